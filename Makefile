@@ -1,0 +1,30 @@
+# femto quick start:  `make render` renders the default scene, `make test` runs the tests.
+# Both install missing Debian packages, configure and build first.
+BUILD ?= build
+SCENE ?= scenes/cornell-box/scene.xml
+OUT ?= out/cornell-box.exr
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps configure build render test clean
+
+all: build
+
+deps:
+	@tools/install-deps.sh
+
+$(BUILD)/build.ninja: | deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+
+configure: deps $(BUILD)/build.ninja
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+render: build
+	$(BUILD)/bin/femto render $(SCENE) -o $(OUT)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) out

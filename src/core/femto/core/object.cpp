@@ -1,0 +1,21 @@
+#include <femto/core/object.h>
+
+#include <array>
+
+namespace femto {
+namespace {
+constexpr std::array<const char*, 13> kTags = {"scene", "integrator", "sensor", "film", "sampler", "rfilter", "shape",
+                                               "bsdf",  "texture",    "emitter", "medium", "phase", "volume"};
+}
+
+const char* kindTag(ObjectKind kind) { return kTags.at(size_t(kind)); }
+
+std::optional<ObjectKind> kindFromTag(std::string_view tag) {
+  for (size_t i = 0; i < kTags.size(); ++i)
+    if (tag == kTags[i]) return ObjectKind(i);
+  return std::nullopt;
+}
+
+std::string Object::toString() const { return std::string(kindTag(kind())) + (id_.empty() ? "" : " id=\"" + id_ + "\""); }
+
+}  // namespace femto

@@ -1,0 +1,121 @@
+#pragma once
+// Typed parameters of one scene object, as the XML gave them. Each value keeps
+// its type, its file:line and whether the plugin read it, so the loader (not
+// each plugin) can report parameters nobody used, and wrong types are reported
+// in XML words ("expected <float>, got <rgb>").
+#include <map>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <femto/core/error.h>
+#include <femto/core/object.h>
+#include <femto/math/transform.h>
+#include <femto/math/vector.h>
+#include <femto/render/spectrum.h>
+
+namespace femto {
+
+class Properties {
+ public:
+  /// The XML element a value came from: its tag decides the type's name in messages.
+  enum class Type { Bool, Integer, Float, String, Point, Vector, Color, Transform, Object };
+  static const char* typeName(Type t);  // "boolean", "integer", "float", "string", "point", "vector", "rgb", "transform", "object"
+
+  Properties() = default;
+  explicit Properties(std::string pluginName) : pluginName_(std::move(pluginName)) {}
+
+  /// The plugin type="" this object is created from (e.g. "diffuse").
+  const std::string& pluginName() const { return pluginName_; }
+  void setPluginName(std::string n) { pluginName_ = std::move(n); }
+  /// id="" of the object (may be empty).
+  const std::string& id() const { return id_; }
+  void setId(std::string id) { id_ = std::move(id); }
+  /// Where the object itself was declared.
+  const SourceLocation& location() const { return location_; }
+  void setLocation(SourceLocation loc) { location_ = std::move(loc); }
+
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  /// Type of a present parameter; throws if absent.
+  Type type(const std::string& name) const;
+  /// File:line of a parameter (the object's own location when absent).
+  SourceLocation location(const std::string& name) const;
+  /// Names in insertion order.
+  std::vector<std::string> names() const { return order_; }
+
+  // Setters. A second value under the same name is an error naming both lines.
+  void setBool(const std::string& name, bool v, SourceLocation loc = {});
+  void setInt(const std::string& name, int64_t v, SourceLocation loc = {});
+  void setFloat(const std::string& name, double v, SourceLocation loc = {});
+  void setString(const std::string& name, std::string v, SourceLocation loc = {});
+  void setPoint(const std::string& name, const Point3f& v, SourceLocation loc = {});
+  void setVector(const std::string& name, const Vec3f& v, SourceLocation loc = {});
+  void setColor(const std::string& name, const Color3f& v, SourceLocation loc = {});
+  void setTransform(const std::string& name, const Transform& v, SourceLocation loc = {});
+  /// Nested objects and references. Unnamed children get a generated name
+  /// ("_arg_0", ...) from the loader.
+  void setObject(const std::string& name, ObjectRef v, SourceLocation loc = {});
+
+  // Getters mark the parameter as read. The forms without a default throw
+  // "missing parameter" errors naming the object's file:line. Wrong types throw
+  // errors naming the parameter's file:line. Integers are accepted where floats
+  // are expected; a float (grey) where a colour is expected.
+  bool getBool(const std::string& name) const;
+  bool getBool(const std::string& name, bool def) const;
+  int64_t getInt(const std::string& name) const;
+  int64_t getInt(const std::string& name, int64_t def) const;
+  float getFloat(const std::string& name) const;
+  float getFloat(const std::string& name, float def) const;
+  std::string getString(const std::string& name) const;
+  std::string getString(const std::string& name, const std::string& def) const;
+  Point3f getPoint(const std::string& name) const;
+  Point3f getPoint(const std::string& name, const Point3f& def) const;
+  Vec3f getVector(const std::string& name) const;
+  Vec3f getVector(const std::string& name, const Vec3f& def) const;
+  Color3f getColor(const std::string& name) const;
+  Color3f getColor(const std::string& name, const Color3f& def) const;
+  Transform getTransform(const std::string& name) const;
+  Transform getTransform(const std::string& name, const Transform& def) const;
+  ObjectRef getObject(const std::string& name) const;
+
+  /// All nested objects (named or not) of the given kind, in document order,
+  /// marking them as read.
+  std::vector<ObjectRef> objectsOfKind(ObjectKind kind) const;
+  /// The single nested object of a kind, or nullptr; more than one is an error.
+  ObjectRef objectOfKind(ObjectKind kind) const;
+  /// Nested object (of `kind`) under `name` if present, else the single
+  /// unnamed-or-named child of that kind; nullptr when none.
+  template <typename T>
+  std::shared_ptr<T> object(ObjectKind kind) const {
+    return std::dynamic_pointer_cast<T>(objectOfKind(kind));
+  }
+
+  /// Helpers for validation with file:line: throw "bad value" errors.
+  [[noreturn]] void raise(const std::string& name, const std::string& message) const;
+
+  void markQueried(const std::string& name) const;
+  bool wasQueried(const std::string& name) const;
+  /// Parameters nobody read, in document order.
+  std::vector<std::string> unqueried() const;
+
+ private:
+  using Value = std::variant<bool, int64_t, double, std::string, Vec3f, Color3f, Transform, ObjectRef>;
+  struct Entry {
+    Type type;
+    Value value;
+    SourceLocation loc;
+    mutable bool queried = false;
+  };
+  void set(const std::string& name, Type type, Value v, SourceLocation loc);
+  const Entry* find(const std::string& name) const;
+  const Entry& require(const std::string& name, Type expected) const;
+  [[noreturn]] void typeError(const std::string& name, const Entry& e, const char* expected) const;
+
+  std::string pluginName_, id_;
+  SourceLocation location_;
+  std::map<std::string, Entry> values_;
+  std::vector<std::string> order_;
+};
+
+}  // namespace femto

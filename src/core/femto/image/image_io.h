@@ -1,0 +1,40 @@
+#pragma once
+// Image files. OpenEXR for float data, OpenImageIO for everything else
+// (PNG previews, textures). Writes go to a temporary file in the same folder
+// and are renamed into place, so a reader never sees a half-written file.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace femto {
+
+/// Interleaved float image, row-major, top row first.
+struct Bitmap {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> data;
+
+  Bitmap() = default;
+  Bitmap(int w, int h, int c) : width(w), height(h), channels(c), data(size_t(w) * h * c, 0.0f) {}
+  float* pixel(int x, int y) { return &data[(size_t(y) * width + x) * channels]; }
+  const float* pixel(int x, int y) const { return &data[(size_t(y) * width + x) * channels]; }
+};
+
+/// Write RGB(A) or single-channel float data as OpenEXR (channels R,G,B[,A] or Y).
+void writeEXR(const std::filesystem::path& path, const Bitmap& image);
+/// Write an 8-bit sRGB PNG preview: linear value * 2^exposure, clamped, sRGB-encoded.
+void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure = 0.0f);
+/// Read any image OpenImageIO can open (EXR, HDR, PNG, JPEG, ...), as float.
+/// 8-bit sRGB inputs are returned as stored values (no linearisation).
+Bitmap readImage(const std::filesystem::path& path);
+
+/// Write `path` atomically: `writer` gets a temporary path in the same
+/// directory; on success it is renamed onto `path`, on failure removed.
+template <typename Writer>
+void writeAtomically(const std::filesystem::path& path, Writer&& writer);
+
+/// sRGB transfer function (IEC 61966-2-1) for one linear value in [0, 1].
+float linearToSRGB(float v);
+
+}  // namespace femto
+
+#include <femto/image/write_atomically.inl>

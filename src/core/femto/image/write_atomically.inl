@@ -1,0 +1,30 @@
+#pragma once
+#include <system_error>
+#include <unistd.h>
+
+#include <femto/core/error.h>
+
+namespace femto {
+
+template <typename Writer>
+void writeAtomically(const std::filesystem::path& path, Writer&& writer) {
+  namespace fs = std::filesystem;
+  fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  // Keep the real extension last: image libraries pick the format from it.
+  fs::path tmp = dir / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  try {
+    writer(tmp);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw Error(str("cannot write \"", path.string(), "\": ", ec.message()));
+  }
+}
+
+}  // namespace femto

@@ -1,0 +1,58 @@
+#pragma once
+// Light sources. Directions are world space. Area emitters are attached to a
+// shape (setShape) by the Shape constructor.
+#include <femto/core/object.h>
+#include <femto/core/properties.h>
+#include <femto/render/interaction.h>
+#include <femto/render/spectrum.h>
+
+namespace femto {
+
+class Shape;
+class Scene;
+
+/// A point on an emitter chosen for next-event estimation from a reference point.
+struct DirectionSample {
+  Point3f p;          // point on the emitter
+  Normal3f n;         // its normal (zero for point lights)
+  Vec3f d;            // unit direction from the reference point to p
+  float dist = 0.0f;  // distance from the reference point to p (Infinity for distant lights)
+  float pdf = 0.0f;   // solid-angle density at the reference point (1 for delta lights)
+  bool delta = false;
+};
+
+class Emitter : public Object {
+ public:
+  /// Reads "sampling_weight" (default 1).
+  explicit Emitter(const Properties& props);
+  ObjectKind kind() const override { return ObjectKind::Emitter; }
+
+  /// Sample a point on the emitter seen from `ref`. Returns the incident
+  /// radiance divided by pdf (for delta lights, intensity / dist^2), ignoring
+  /// visibility; black when nothing can be sampled.
+  virtual Color3f sampleDirection(const Point3f& ref, const Point2f& u, DirectionSample& ds) const = 0;
+  /// Solid-angle density of sampleDirection choosing ds.p from `ref`.
+  virtual float pdfDirection(const Point3f& ref, const DirectionSample& ds) const = 0;
+  /// Radiance leaving point `si` of this emitter's shape toward world direction `w`.
+  virtual Color3f eval(const SurfaceInteraction& si, const Vec3f& w) const;
+  /// Radiance arriving along a ray that escapes the scene (environment emitters).
+  virtual Color3f evalEnvironment(const Ray& ray) const;
+  /// Sample an emitted ray (photon tracing): returns power / (pdf_pos * pdf_dir).
+  virtual Color3f sampleRay(const Point2f& uPosition, const Point2f& uDirection, Ray& ray) const;
+  /// Total emitted power (watts in scene units), used to pick emitters for photons.
+  virtual Color3f power() const;
+
+  virtual bool isDelta() const = 0;
+  virtual bool isEnvironment() const { return false; }
+  /// Area emitters only: the shape they sit on.
+  virtual void setShape(const Shape* shape);
+  /// Called once the scene exists (environment emitters need its bounds).
+  virtual void setScene(const Scene& scene);
+
+  float samplingWeight() const { return samplingWeight_; }
+
+ private:
+  float samplingWeight_ = 1.0f;
+};
+
+}  // namespace femto

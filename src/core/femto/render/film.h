@@ -1,0 +1,38 @@
+#pragma once
+// Film: image size, crop window, reconstruction filter and how the result is
+// written. Accumulation happens in ImageBlocks owned by the render loop.
+#include <filesystem>
+#include <memory>
+
+#include <femto/core/object.h>
+#include <femto/core/properties.h>
+#include <femto/math/vector.h>
+#include <femto/render/image_block.h>
+#include <femto/render/rfilter.h>
+
+namespace femto {
+
+class Film : public Object {
+ public:
+  /// Reads width/height (default 768x576), crop_offset_x/y, crop_width/height
+  /// and a nested <rfilter> (default: gaussian, as Mitsuba).
+  explicit Film(const Properties& props);
+  ObjectKind kind() const override { return ObjectKind::Film; }
+
+  const Point2i& size() const { return size_; }
+  const Point2i& cropOffset() const { return cropOffset_; }
+  const Point2i& cropSize() const { return cropSize_; }
+  const ReconstructionFilter* filter() const { return filter_.get(); }
+
+  /// Write the developed crop window to `path` (the film chooses the format
+  /// and writes previews beside it). Writes are atomic.
+  virtual void develop(const ImageBlock& image, const std::filesystem::path& path) const = 0;
+  /// Default output file extension (".exr").
+  virtual std::string defaultExtension() const { return ".exr"; }
+
+ private:
+  Point2i size_, cropOffset_, cropSize_;
+  std::shared_ptr<ReconstructionFilter> filter_;
+};
+
+}  // namespace femto

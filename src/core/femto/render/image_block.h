@@ -1,0 +1,47 @@
+#pragma once
+// A rectangle of the film that accumulates filtered samples: per pixel the
+// weighted RGB sum and the weight sum (the image is sum / weight). A block
+// covers its tile plus a border of the filter radius, so blocks overlap and
+// are merged into the full-image block in a fixed order (deterministic sums).
+#include <cstdint>
+#include <vector>
+
+#include <femto/math/vector.h>
+#include <femto/render/spectrum.h>
+
+namespace femto {
+
+class ReconstructionFilter;
+
+class ImageBlock {
+ public:
+  /// `offset`/`size` of the tile in film pixels; `filter` may be null (box of radius 0.5).
+  ImageBlock(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter);
+
+  /// Splat a sample at continuous film position `pos` (pixel (x, y) covers
+  /// [x, x+1) x [y, y+1)). Returns false (and adds nothing) when `value` is
+  /// NaN, infinite or negative; the caller counts and reports those.
+  bool put(const Point2f& pos, const Color3f& value);
+  /// Add another block's sums into this one where they overlap.
+  void merge(const ImageBlock& other);
+  void clear();
+
+  const Point2i& offset() const { return offset_; }
+  const Point2i& size() const { return size_; }
+  int border() const { return border_; }
+  /// Stored extent including the border.
+  int storedWidth() const { return size_.x + 2 * border_; }
+  int storedHeight() const { return size_.y + 2 * border_; }
+  /// Weighted RGB sum and weight of stored pixel (x, y) (border-relative: 0 is offset - border).
+  const float* pixel(int x, int y) const { return &data_[(size_t(y) * storedWidth() + x) * 4]; }
+  /// Developed colour (sum / weight, 0 when weight is 0) of film pixel `p` inside the tile.
+  Color3f value(const Point2i& p) const;
+
+ private:
+  Point2i offset_, size_;
+  int border_ = 0;
+  const ReconstructionFilter* filter_;
+  std::vector<float> data_;  // RGBW
+};
+
+}  // namespace femto

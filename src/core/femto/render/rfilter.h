@@ -1,0 +1,33 @@
+#pragma once
+// Pixel reconstruction filters. The film splats each sample with weights from
+// a table of the filter over [0, radius] (Mitsuba-style), which makes the cost
+// independent of the filter's closed form.
+#include <array>
+
+#include <femto/core/object.h>
+#include <femto/core/properties.h>
+
+namespace femto {
+
+class ReconstructionFilter : public Object {
+ public:
+  ObjectKind kind() const override { return ObjectKind::ReconstructionFilter; }
+  /// Filter radius in pixels; samples farther than this from a pixel centre do not touch it.
+  float radius() const { return radius_; }
+  /// Separable 1D profile, defined for |x| <= radius().
+  virtual float eval(float x) const = 0;
+  /// Tabulated eval(); call once from the subclass constructor after setting the radius.
+  float evalTabulated(float x) const;
+
+ protected:
+  void setRadius(float r);
+  void buildTable();
+
+ private:
+  static constexpr int TableSize = 64;
+  float radius_ = 0.5f;
+  float scale_ = 0.0f;
+  std::array<float, TableSize + 1> table_{};
+};
+
+}  // namespace femto

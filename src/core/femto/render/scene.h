@@ -1,0 +1,65 @@
+#pragma once
+// The scene: shapes in an Embree BVH (kept inside the core), emitters, the
+// sensor and the integrator. Created by the loader from the <scene> element.
+#include <memory>
+#include <vector>
+
+#include <femto/core/object.h>
+#include <femto/core/properties.h>
+#include <femto/math/bbox.h>
+#include <femto/render/emitter.h>
+#include <femto/render/integrator.h>
+#include <femto/render/interaction.h>
+#include <femto/render/sensor.h>
+#include <femto/render/shape.h>
+
+namespace femto {
+
+class Scene : public Object {
+ public:
+  /// Children: shapes, emitters, one sensor (default perspective), one
+  /// integrator (default path). Builds the acceleration structure.
+  explicit Scene(const Properties& props);
+  ~Scene() override;
+  ObjectKind kind() const override { return ObjectKind::Scene; }
+
+  /// Nearest surface hit in (ray.tmin, ray.tmax); fills `si` (including wi and shape).
+  bool rayIntersect(const Ray& ray, SurfaceInteraction& si) const;
+  /// Is anything hit in (ray.tmin, ray.tmax)? (shadow rays)
+  bool rayTest(const Ray& ray) const;
+
+  /// Pick an emitter proportionally to its sampling weight and sample a
+  /// direction toward it from `ref`; returns radiance / (pick * direction pdf),
+  /// zero when occluded (if `testVisibility`). ds.pdf includes the pick probability.
+  Color3f sampleEmitterDirection(const SurfaceInteraction& ref, const Point2f& u, DirectionSample& ds,
+                                 bool testVisibility = true) const;
+  /// Density (pick probability times solid angle) of sampleEmitterDirection
+  /// choosing point ds.p of `emitter` from `ref`.
+  float pdfEmitterDirection(const Point3f& ref, const DirectionSample& ds, const Emitter* emitter) const;
+  /// Probability that sampleEmitterDirection picks `emitter`.
+  float emitterPickProbability(const Emitter* emitter) const;
+
+  const std::vector<std::shared_ptr<Shape>>& shapes() const { return shapes_; }
+  const std::vector<std::shared_ptr<Emitter>>& emitters() const { return emitters_; }
+  /// Environment emitters, looked up when a ray escapes.
+  const std::vector<const Emitter*>& environmentEmitters() const { return environment_; }
+  Color3f evalEnvironment(const Ray& ray) const;
+
+  const Sensor& sensor() const { return *sensor_; }
+  const Integrator& integrator() const { return *integrator_; }
+  const BoundingBox3f& bbox() const { return bbox_; }
+
+ private:
+  struct Accel;  // Embree state, defined in embree_accel.cpp
+  std::unique_ptr<Accel> accel_;
+  std::vector<std::shared_ptr<Shape>> shapes_;
+  std::vector<std::shared_ptr<Emitter>> emitters_;
+  std::vector<const Emitter*> environment_;
+  std::vector<float> emitterCdf_;
+  float emitterWeightSum_ = 0.0f;
+  std::shared_ptr<Sensor> sensor_;
+  std::shared_ptr<Integrator> integrator_;
+  BoundingBox3f bbox_;
+};
+
+}  // namespace femto

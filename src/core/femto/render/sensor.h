@@ -1,0 +1,38 @@
+#pragma once
+// Cameras. A sensor owns its film and sampler (nested in the XML).
+#include <memory>
+
+#include <femto/core/object.h>
+#include <femto/core/properties.h>
+#include <femto/math/transform.h>
+#include <femto/render/film.h>
+#include <femto/render/sampler.h>
+
+namespace femto {
+
+class Medium;
+
+class Sensor : public Object {
+ public:
+  /// Reads "to_world", the nested <film> (default hdrfilm) and <sampler>
+  /// (default independent), and an optional "medium" ref the camera sits in.
+  explicit Sensor(const Properties& props);
+  ObjectKind kind() const override { return ObjectKind::Sensor; }
+
+  /// Primary ray through continuous film position `filmPos` (in pixels of the
+  /// full film) with aperture sample `u`; returns the importance weight.
+  virtual Color3f sampleRay(const Point2f& filmPos, const Point2f& u, Ray& ray) const = 0;
+
+  const Film& film() const { return *film_; }
+  const Sampler& sampler() const { return *sampler_; }
+  const Transform& toWorld() const { return toWorld_; }
+  const Medium* medium() const { return medium_.get(); }
+
+ protected:
+  Transform toWorld_;
+  std::shared_ptr<Film> film_;
+  std::shared_ptr<Sampler> sampler_;
+  std::shared_ptr<Medium> medium_;
+};
+
+}  // namespace femto
