@@ -66,6 +66,7 @@ class PluginManager {
  private:
   PluginManager();
   struct Library;
+  const PluginDescriptor& openLocked(const std::filesystem::path& file);
   mutable std::mutex mutex_;
   std::vector<std::filesystem::path> searchPath_;
   std::vector<std::unique_ptr<Library>> libraries_;

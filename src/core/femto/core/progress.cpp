@@ -1,0 +1,75 @@
+#include <femto/core/progress.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace femto {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// Redrawing more often than this only costs time (and flickers).
+constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
+constexpr int kBarWidth = 30;
+
+std::string formatDuration(double seconds) {
+  long s = long(seconds + 0.5);
+  char buffer[32];
+  if (s >= 3600)
+    std::snprintf(buffer, sizeof buffer, "%ldh%02ldm%02lds", s / 3600, (s / 60) % 60, s % 60);
+  else if (s >= 60)
+    std::snprintf(buffer, sizeof buffer, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buffer, sizeof buffer, "%lds", s);
+  return buffer;
+}
+
+}  // namespace
+
+ProgressReporter::ProgressReporter(std::string label, uint64_t total, bool enabled)
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled && isatty(STDERR_FILENO)),
+      start_(Clock::now()),
+      lastDraw_(start_ - kRedrawInterval) {}
+
+ProgressReporter::~ProgressReporter() { finish(); }
+
+double ProgressReporter::elapsedSeconds() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+void ProgressReporter::update(uint64_t delta) {
+  uint64_t done = done_.fetch_add(delta) + delta;
+  if (!enabled_) return;
+  // try_lock: a worker never waits for another one that is drawing.
+  std::unique_lock<std::mutex> lock(drawMutex_, std::try_to_lock);
+  if (!lock.owns_lock() || finished_) return;
+  auto now = Clock::now();
+  if (now - lastDraw_ < kRedrawInterval) return;
+  lastDraw_ = now;
+  draw(done, false);
+}
+
+void ProgressReporter::finish() {
+  std::lock_guard<std::mutex> lock(drawMutex_);
+  if (finished_) return;
+  finished_ = true;
+  if (enabled_) draw(done_.load(), true);
+}
+
+void ProgressReporter::draw(uint64_t done, bool final) {
+  double fraction = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
+  int filled = int(fraction * kBarWidth + 0.5);
+  double elapsed = elapsedSeconds();
+  std::string bar(size_t(filled), '#');
+  bar.append(size_t(kBarWidth - filled), ' ');
+  std::string eta = fraction > 0 && !final ? ", ETA " + formatDuration(elapsed * (1 - fraction) / fraction) : "";
+  // \r and clear-to-end-of-line: the bar overwrites itself on one line.
+  std::fprintf(stderr, "\r%s [%s] %5.1f%% (%s%s)\033[K%s", label_.c_str(), bar.c_str(), fraction * 100.0,
+               formatDuration(elapsed).c_str(), eta.c_str(), final ? "\n" : "");
+  std::fflush(stderr);
+}
+
+}  // namespace femto
