@@ -80,7 +80,8 @@ bool PluginManager::validName(const std::string& name) {
 PluginManager::PluginManager() {
   if (fs::path exeDir = executableDir(); !exeDir.empty()) {
     searchPath_.push_back(exeDir / "plugins");
-    searchPath_.push_back((exeDir / ".." / "lib" / "femto" / "plugins").lexically_normal());
+    // <prefix>/bin/femto finds <prefix>/lib/femto/plugins (the libdir the build was configured with).
+    searchPath_.push_back((exeDir / ".." / FEMTO_INSTALLED_PLUGIN_DIR).lexically_normal());
   }
   for (fs::path& dir : splitPathList(std::getenv("FEMTO_PLUGIN_PATH"))) searchPath_.push_back(std::move(dir));
 }
