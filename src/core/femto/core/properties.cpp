@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <femto/core/spelling.h>
+
 namespace femto {
 
 const char* Properties::typeName(Type t) {
@@ -44,6 +46,18 @@ const Properties::Entry* Properties::find(const std::string& name) const {
   return it == values_.end() ? nullptr : &it->second;
 }
 
+bool Properties::has(const std::string& name) const {
+  asked_.insert(name);
+  return values_.count(name) != 0;
+}
+
+std::string Properties::suggestionFor(const std::string& unusedName) const {
+  std::vector<std::string> absent;
+  for (const auto& name : asked_)
+    if (!values_.count(name)) absent.push_back(name);
+  return didYouMean(unusedName, absent);
+}
+
 Properties::Type Properties::type(const std::string& name) const {
   const Entry* e = find(name);
   if (!e) throw Error(location_, str("parameter \"", name, "\" is not set"));
@@ -62,6 +76,7 @@ void Properties::typeError(const std::string& name, const Entry& e, const char* 
 }
 
 const Properties::Entry& Properties::require(const std::string& name, Type expected) const {
+  asked_.insert(name);
   const Entry* e = find(name);
   if (!e)
     throw Error(location_, str("\"", pluginName_, "\" is missing the required parameter \"", name, "\" (<",

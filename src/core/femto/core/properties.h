@@ -5,6 +5,7 @@
 // in XML words ("expected <float>, got <rgb>").
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -36,7 +37,8 @@ class Properties {
   const SourceLocation& location() const { return location_; }
   void setLocation(SourceLocation loc) { location_ = std::move(loc); }
 
-  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  /// Is the parameter present? Also records `name` as asked for (see askedNames).
+  bool has(const std::string& name) const;
   /// Type of a present parameter; throws if absent.
   Type type(const std::string& name) const;
   /// File:line of a parameter (the object's own location when absent).
@@ -98,6 +100,11 @@ class Properties {
   bool wasQueried(const std::string& name) const;
   /// Parameters nobody read, in document order.
   std::vector<std::string> unqueried() const;
+  /// Every name a plugin asked for (get*, has), present or not: the
+  /// vocabulary of the plugin, used for "did you mean" hints.
+  std::vector<std::string> askedNames() const { return {asked_.begin(), asked_.end()}; }
+  /// " (did you mean "x"?)" for an unused parameter, from the asked-for names that are absent; or "".
+  std::string suggestionFor(const std::string& unusedName) const;
 
  private:
   using Value = std::variant<bool, int64_t, double, std::string, Vec3f, Color3f, Transform, ObjectRef>;
@@ -116,6 +123,7 @@ class Properties {
   SourceLocation location_;
   std::map<std::string, Entry> values_;
   std::vector<std::string> order_;
+  mutable std::set<std::string> asked_;
 };
 
 }  // namespace femto

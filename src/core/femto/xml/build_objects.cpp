@@ -1,0 +1,109 @@
+#include "build_objects.h"
+
+#include <femto/core/log.h>
+
+#include "scene_error.h"
+#include "value_properties.h"
+
+namespace femto::xml {
+namespace {
+
+/// Command-line overrides for this kind of object: --resolution for films, --spp for samplers.
+std::vector<std::pair<std::string, int64_t>> overridesFor(ObjectKind kind, const LoadOptions& options) {
+  if (kind == ObjectKind::Film && options.resolution)
+    return {{"width", options.resolution->x}, {"height", options.resolution->y}};
+  if (kind == ObjectKind::Sampler && options.sampleCount) return {{"sample_count", *options.sampleCount}};
+  return {};
+}
+
+bool isOverridden(const std::vector<std::pair<std::string, int64_t>>& overrides, const std::string& name) {
+  for (const auto& o : overrides)
+    if (o.first == name) return true;
+  return false;
+}
+
+}  // namespace
+
+Properties ObjectBuilder::properties(const XmlNode& node) {
+  auto kind = kindFromTag(node.tag);
+  if (!kind) throw sceneError(node, str("<", node.tag, "> is not an object"));
+  Properties props;
+  if (*kind != ObjectKind::Scene) {
+    const std::string* type = node.attribute("type");
+    if (!type || type->empty()) throw sceneError(node, str("<", node.tag, "> needs a type=\"...\" attribute"));
+    props.setPluginName(*type);
+  } else {
+    props.setPluginName("scene");
+  }
+  props.setId(node.attributeOr("id", ""));
+  props.setLocation(node.location);
+
+  auto overrides = overridesFor(*kind, options_);
+  size_t unnamed = 0;
+  for (const auto& child : node.children) {
+    const std::string* name = child.attribute("name");
+    if (isValueTag(child.tag)) {
+      if (name && isOverridden(overrides, *name)) continue;
+      addValueProperty(props, child, expanded_.resolver);
+      continue;
+    }
+    const XmlNode* objectNode = nullptr;
+    if (child.tag == "ref") objectNode = child.target;
+    else if (kindFromTag(child.tag) && child.tag != "scene") objectNode = &child;
+    if (!objectNode) {
+      throw sceneError(child, str("unsupported tag <", child.tag, ">",
+                                  child.tag == "scene" ? " (a <scene> cannot be nested)" : ""));
+    }
+    // Objects at the top of the scene that something references belong to
+    // their referrers (e.g. an area emitter attached to a shape by <ref>).
+    if (*kind == ObjectKind::Scene && child.tag != "ref" && index_.referenced.count(child.attributeOr("id", "")))
+      continue;
+    ObjectRef object = build(*objectNode);
+    std::string key = name && !name->empty() ? *name : str("_arg_", unnamed++);
+    try {
+      props.setObject(key, object, child.location);
+    } catch (const Error& e) {
+      throw expanded_.sources.addEcho(e, child);
+    }
+  }
+  for (const auto& [name, value] : overrides) props.setInt(name, value, node.location);
+  return props;
+}
+
+ObjectRef ObjectBuilder::build(const XmlNode& node) {
+  if (auto it = built_.find(&node); it != built_.end()) return it->second;
+  if (!inProgress_.insert(&node).second)
+    throw sceneError(node, str("object \"", node.attributeOr("id", ""), "\" refers to itself (reference cycle)"));
+  Properties props = properties(node);
+  ObjectKind kind = *kindFromTag(node.tag);
+  ObjectRef object;
+  try {
+    object = factory_.create(kind, props);
+  } catch (const Error& e) {
+    throw expanded_.sources.addEcho(e, node);
+  }
+  if (!object) throw sceneError(node, str("plugin \"", props.pluginName(), "\" returned no object"));
+  if (!props.id().empty()) object->setId(props.id());
+  reportUnused(props, node);
+  inProgress_.erase(&node);
+  built_[&node] = object;
+  return object;
+}
+
+void ObjectBuilder::reportUnused(const Properties& props, const XmlNode& node) const {
+  for (const auto& name : props.unqueried()) {
+    // Named library objects at the top of a scene (e.g. a <bsdf id> no shape
+    // uses) are legal in Mitsuba; they are not parameters of the scene.
+    if (props.pluginName() == "scene" && node.tag == "scene" && props.type(name) == Properties::Type::Object &&
+        !props.getObject(name)->id().empty())
+      continue;
+    SourceLocation where = props.location(name);
+    std::string message = str("parameter \"", name, "\" of \"", props.pluginName(), "\" was not used",
+                              props.suggestionFor(name));
+    Error error = sceneError(where, expanded_.sources.lineText(where), message);
+    if (options_.strict) throw error;
+    logWarn(error.what());
+  }
+}
+
+}  // namespace femto::xml

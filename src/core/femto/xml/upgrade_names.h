@@ -1,0 +1,20 @@
+#pragma once
+// Parse stage 3: Mitsuba 0.4-0.6 scenes (version < 2) spell parameter names in
+// camelCase ("toWorld", "intIOR"); femto, like Mitsuba 3, uses snake_case.
+#include <string>
+#include <string_view>
+
+#include "xml_node.h"
+
+namespace femto::xml {
+
+/// "toWorld" -> "to_world", "intIOR" -> "int_ior", "cropOffsetX" -> "crop_offset_x":
+/// an underscore before an uppercase letter that follows a lowercase letter or
+/// a digit, then everything lowercased. snake_case input is returned unchanged.
+std::string camelToSnake(std::string_view name);
+
+/// Rewrite the name="" attributes of every node from a version < 2 file.
+/// Nodes from Mitsuba 3 files keep their names.
+void upgradeLegacyNames(XmlNode& root);
+
+}  // namespace femto::xml
