@@ -19,7 +19,7 @@ class Sampler;
 struct RenderOptions {
   int threads = 0;                         // 0 = all cores
   uint64_t seed = 0;                       // base seed; the image is a function of (scene, seed)
-  std::filesystem::path output;            // output file (the film may write previews beside it)
+  std::filesystem::path output;            // output file (the film may write previews beside it); empty: nothing written
   bool progress = true;                    // progress bar (only drawn on a TTY)
   const std::atomic<bool>* cancel = nullptr;  // set to stop early (Ctrl-C); a valid partial image is written
 };

@@ -50,7 +50,7 @@ class Scene : public Object {
   const BoundingBox3f& bbox() const { return bbox_; }
 
  private:
-  struct Accel;  // Embree state, defined in embree_accel.cpp
+  struct Accel;  // Embree state (detail/embree_accel.h, internal to the core)
   std::unique_ptr<Accel> accel_;
   std::vector<std::shared_ptr<Shape>> shapes_;
   std::vector<std::shared_ptr<Emitter>> emitters_;

@@ -1,0 +1,97 @@
+#include <femto/image/image_io.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+
+#include <femto/core/error.h>
+
+namespace femto {
+namespace {
+
+std::vector<const char*> exrChannelNames(int channels) {
+  switch (channels) {
+    case 1: return {"Y"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+    default: return {};
+  }
+}
+
+void checkImage(const std::filesystem::path& path, const Bitmap& image) {
+  if (image.width <= 0 || image.height <= 0 || image.data.size() != size_t(image.width) * image.height * image.channels)
+    throw Error(str("cannot write \"", path.string(), "\": the image is empty or inconsistent (", image.width, "x",
+                    image.height, "x", image.channels, ")"));
+  if (image.channels != 1 && image.channels != 3 && image.channels != 4)
+    throw Error(str("cannot write \"", path.string(), "\": ", image.channels, " channels (1, 3 or 4 are supported)"));
+}
+
+}  // namespace
+
+float linearToSRGB(float v) {
+  if (!(v > 0.0f)) return 0.0f;
+  if (v >= 1.0f) return 1.0f;
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+void writeEXR(const std::filesystem::path& path, const Bitmap& image) {
+  checkImage(path, image);
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    try {
+      Imf::Header header(image.width, image.height);
+      Imf::FrameBuffer frameBuffer;
+      const size_t xStride = sizeof(float) * image.channels, yStride = xStride * image.width;
+      auto names = exrChannelNames(image.channels);
+      for (int c = 0; c < image.channels; ++c) {
+        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+        // OpenEXR only reads through the pointer; its API is not const-correct.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(image.data.data() + c));
+        frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
+      }
+      Imf::OutputFile file(tmp.c_str(), header);
+      file.setFrameBuffer(frameBuffer);
+      file.writePixels(image.height);
+    } catch (const std::exception& e) {
+      throw Error(str("cannot write \"", path.string(), "\": ", e.what()));
+    }
+  });
+}
+
+void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure) {
+  checkImage(path, image);
+  const float scale = std::exp2(exposure);
+  std::vector<uint8_t> bytes(image.data.size());
+  for (size_t i = 0; i < image.data.size(); ++i) {
+    bool alpha = image.channels == 4 && i % 4 == 3;  // alpha is linear coverage, not a colour
+    float v = alpha ? std::clamp(image.data[i], 0.0f, 1.0f) : linearToSRGB(image.data[i] * scale);
+    bytes[i] = uint8_t(v * 255.0f + 0.5f);
+  }
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out) throw Error(str("cannot write \"", path.string(), "\": ", OIIO::geterror()));
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
+      throw Error(str("cannot write \"", path.string(), "\": ", out->geterror()));
+  });
+}
+
+Bitmap readImage(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw Error(str("cannot read image \"", path.string(), "\": ", OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  Bitmap image(spec.width, spec.height, spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data.data()))
+    throw Error(str("cannot read image \"", path.string(), "\": ", in->geterror()));
+  in->close();
+  return image;
+}
+
+}  // namespace femto

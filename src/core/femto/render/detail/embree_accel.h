@@ -1,0 +1,37 @@
+#pragma once
+// INTERNAL to the femto core: not part of the plugin API. The Embree
+// acceleration structure behind Scene::rayIntersect/rayTest. Embree's own
+// headers are only included by embree_accel.cpp, so nothing installed
+// depends on them (plugins never see Embree).
+#include <memory>
+#include <vector>
+
+#include <femto/math/ray.h>
+#include <femto/render/interaction.h>
+
+namespace femto {
+class Shape;
+}
+
+namespace femto::detail {
+
+class EmbreeAccel {
+ public:
+  /// Triangle meshes become Embree triangle geometry (buffers copied); every
+  /// other shape a user geometry calling Shape::intersect. `shapes` must outlive this.
+  explicit EmbreeAccel(const std::vector<std::shared_ptr<Shape>>& shapes);
+  ~EmbreeAccel();
+  EmbreeAccel(const EmbreeAccel&) = delete;
+  EmbreeAccel& operator=(const EmbreeAccel&) = delete;
+
+  /// Nearest hit in (ray.tmin, ray.tmax); fills t, shape, primIndex and
+  /// everything computeInteraction provides, plus wi.
+  bool intersect(const Ray& ray, SurfaceInteraction& si) const;
+  bool occluded(const Ray& ray) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace femto::detail

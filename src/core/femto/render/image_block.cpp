@@ -1,0 +1,77 @@
+#include <femto/render/image_block.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/render/rfilter.h>
+
+namespace femto {
+
+ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter)
+    : offset_(offset), size_(size), filter_(filter) {
+  // A sample inside the tile reaches pixels whose centres lie within the
+  // filter radius: at most ceil(radius - 1/2) pixels beyond the tile's edge.
+  float radius = filter ? filter->radius() : 0.5f;
+  border_ = std::max(0, int(std::ceil(radius - 0.5f)));
+  data_.assign(size_t(storedWidth()) * storedHeight() * 4, 0.0f);
+}
+
+void ImageBlock::clear() { std::fill(data_.begin(), data_.end(), 0.0f); }
+
+bool ImageBlock::put(const Point2f& pos, const Color3f& value) {
+  if (!value.isValid()) return false;
+  float radius = filter_ ? filter_->radius() : 0.5f;
+  // Position relative to the stored area, shifted so pixel i has its centre at i.
+  float px = pos.x - float(offset_.x - border_) - 0.5f;
+  float py = pos.y - float(offset_.y - border_) - 0.5f;
+  // Pixels with centre offset in (-radius, radius]: half-open so that a box
+  // filter of radius 1/2 gives every position exactly one pixel, floor(pos).
+  int x0 = std::max(0, int(std::floor(px - radius)) + 1);
+  int x1 = std::min(storedWidth() - 1, int(std::floor(px + radius)));
+  int y0 = std::max(0, int(std::floor(py - radius)) + 1);
+  int y1 = std::min(storedHeight() - 1, int(std::floor(py + radius)));
+  if (x0 > x1 || y0 > y1) return true;  // outside this block: nothing to add, but not an invalid value
+
+  constexpr int MaxFootprint = 64;
+  float wx[MaxFootprint], wy[MaxFootprint];
+  x1 = std::min(x1, x0 + MaxFootprint - 1);
+  y1 = std::min(y1, y0 + MaxFootprint - 1);
+  for (int x = x0; x <= x1; ++x) wx[x - x0] = filter_ ? filter_->evalTabulated(float(x) - px) : 1.0f;
+  for (int y = y0; y <= y1; ++y) wy[y - y0] = filter_ ? filter_->evalTabulated(float(y) - py) : 1.0f;
+
+  for (int y = y0; y <= y1; ++y) {
+    float* row = &data_[(size_t(y) * storedWidth()) * 4];
+    for (int x = x0; x <= x1; ++x) {
+      float w = wx[x - x0] * wy[y - y0];
+      float* d = row + size_t(x) * 4;
+      d[0] += value.r * w;
+      d[1] += value.g * w;
+      d[2] += value.b * w;
+      d[3] += w;
+    }
+  }
+  return true;
+}
+
+void ImageBlock::merge(const ImageBlock& other) {
+  // Film coordinates of the stored areas' corners.
+  int ox = other.offset_.x - other.border_, oy = other.offset_.y - other.border_;
+  int tx = offset_.x - border_, ty = offset_.y - border_;
+  int x0 = std::max(ox, tx), x1 = std::min(ox + other.storedWidth(), tx + storedWidth());
+  int y0 = std::max(oy, ty), y1 = std::min(oy + other.storedHeight(), ty + storedHeight());
+  if (x0 >= x1) return;
+  for (int y = y0; y < y1; ++y) {
+    const float* src = other.pixel(x0 - ox, y - oy);
+    float* dst = &data_[(size_t(y - ty) * storedWidth() + (x0 - tx)) * 4];
+    for (int i = 0; i < (x1 - x0) * 4; ++i) dst[i] += src[i];
+  }
+}
+
+Color3f ImageBlock::value(const Point2i& p) const {
+  const float* d = pixel(p.x - offset_.x + border_, p.y - offset_.y + border_);
+  if (d[3] == 0.0f) return Color3f(0.0f);
+  float inv = 1.0f / d[3];
+  return Color3f(d[0] * inv, d[1] * inv, d[2] * inv);
+}
+
+}  // namespace femto

@@ -1,0 +1,27 @@
+#include <femto/render/rfilter.h>
+
+#include <cmath>
+
+#include <femto/core/error.h>
+
+namespace femto {
+
+void ReconstructionFilter::setRadius(float r) {
+  if (!(r > 0.0f) || !std::isfinite(r)) throw Error(str("reconstruction filter radius must be positive, got ", r));
+  radius_ = r;
+}
+
+void ReconstructionFilter::buildTable() {
+  for (int i = 0; i <= TableSize; ++i) table_[i] = eval(radius_ * float(i) / float(TableSize));
+  scale_ = float(TableSize) / radius_;
+}
+
+float ReconstructionFilter::evalTabulated(float x) const {
+  // Nearest table entry; the film's per-pixel weight normalisation makes the
+  // small quantisation error harmless (Mitsuba does the same).
+  float pos = std::abs(x) * scale_ + 0.5f;
+  if (!(pos < float(TableSize + 1))) return 0.0f;
+  return table_[size_t(pos)];
+}
+
+}  // namespace femto

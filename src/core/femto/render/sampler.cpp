@@ -1,0 +1,23 @@
+#include <femto/render/sampler.h>
+
+namespace femto {
+
+Sampler::Sampler(const Properties& props) {
+  int64_t n = props.getInt("sample_count", 4);
+  if (n <= 0 || n > int64_t(UINT32_MAX)) props.raise("sample_count", str("must be a positive integer, got ", n));
+  sampleCount_ = uint32_t(n);
+}
+
+namespace {
+// splitmix64 finaliser (Steele et al. 2014, "Fast splittable pseudorandom number generators").
+uint64_t splitmix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+}  // namespace
+
+uint64_t mixSeed(uint64_t a, uint64_t b) { return splitmix(splitmix(a) ^ b); }
+
+}  // namespace femto

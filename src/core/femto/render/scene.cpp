@@ -1,0 +1,87 @@
+#include <femto/render/scene.h>
+
+#include <algorithm>
+
+#include <femto/render/default_child.h>
+#include <femto/render/detail/embree_accel.h>
+
+namespace femto {
+
+struct Scene::Accel : detail::EmbreeAccel {
+  using detail::EmbreeAccel::EmbreeAccel;
+};
+
+Scene::Scene(const Properties& props) {
+  for (const auto& obj : props.objectsOfKind(ObjectKind::Shape)) shapes_.push_back(std::static_pointer_cast<Shape>(obj));
+  for (const auto& obj : props.objectsOfKind(ObjectKind::Emitter))
+    emitters_.push_back(std::static_pointer_cast<Emitter>(obj));
+  for (const auto& shape : shapes_)
+    if (shape->emitterRef()) emitters_.push_back(shape->emitterRef());
+  sensor_ = nestedOrDefault<Sensor>(props, ObjectKind::Sensor, "perspective");
+  integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
+
+  for (const auto& shape : shapes_) bbox_.expand(shape->bbox());
+  accel_ = std::make_unique<Accel>(shapes_);
+
+  // Emitters are picked with probability proportional to their sampling weight.
+  emitterCdf_.reserve(emitters_.size());
+  double sum = 0.0;
+  for (const auto& e : emitters_) {
+    sum += e->samplingWeight();
+    emitterCdf_.push_back(float(sum));
+  }
+  emitterWeightSum_ = float(sum);
+  for (const auto& e : emitters_) {
+    e->setScene(*this);
+    if (e->isEnvironment()) environment_.push_back(e.get());
+  }
+}
+
+Scene::~Scene() = default;
+
+bool Scene::rayIntersect(const Ray& ray, SurfaceInteraction& si) const { return accel_->intersect(ray, si); }
+
+bool Scene::rayTest(const Ray& ray) const { return accel_->occluded(ray); }
+
+float Scene::emitterPickProbability(const Emitter* emitter) const {
+  return emitterWeightSum_ > 0.0f ? emitter->samplingWeight() / emitterWeightSum_ : 0.0f;
+}
+
+Color3f Scene::sampleEmitterDirection(const SurfaceInteraction& ref, const Point2f& u, DirectionSample& ds,
+                                      bool testVisibility) const {
+  ds = DirectionSample();
+  if (emitterWeightSum_ <= 0.0f) return Color3f(0.0f);
+  // Choose an emitter with u.x, then rescale the part of u.x inside its
+  // interval back to [0, 1) so it can be reused for the emitter's own sampling.
+  float target = u.x * emitterWeightSum_;
+  size_t i = size_t(std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), target) - emitterCdf_.begin());
+  i = std::min(i, emitterCdf_.size() - 1);
+  while (i > 0 && emitterCdf_[i] == emitterCdf_[i - 1]) --i;  // never pick a zero-weight emitter
+  float start = i == 0 ? 0.0f : emitterCdf_[i - 1];
+  float width = emitterCdf_[i] - start;
+  Point2f uReused(std::clamp((target - start) / width, 0.0f, 0.99999994f), u.y);
+
+  const Emitter& emitter = *emitters_[i];
+  Color3f value = emitter.sampleDirection(ref.p, uReused, ds);
+  if (ds.pdf <= 0.0f || value.isBlack()) return Color3f(0.0f);
+  float pick = emitterPickProbability(&emitter);
+  ds.pdf *= pick;
+  value = value / pick;
+  if (testVisibility) {
+    Ray shadow = std::isfinite(ds.dist) ? ref.spawnRayTo(ds.p) : ref.spawnRay(ds.d);
+    if (rayTest(shadow)) return Color3f(0.0f);
+  }
+  return value;
+}
+
+float Scene::pdfEmitterDirection(const Point3f& ref, const DirectionSample& ds, const Emitter* emitter) const {
+  return emitter->pdfDirection(ref, ds) * emitterPickProbability(emitter);
+}
+
+Color3f Scene::evalEnvironment(const Ray& ray) const {
+  Color3f sum(0.0f);
+  for (const Emitter* e : environment_) sum += e->evalEnvironment(ray);
+  return sum;
+}
+
+}  // namespace femto

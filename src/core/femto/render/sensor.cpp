@@ -1,0 +1,19 @@
+#include <femto/render/sensor.h>
+
+#include <femto/render/default_child.h>
+#include <femto/render/medium.h>
+
+namespace femto {
+Sensor::Sensor(const Properties& props) {
+  toWorld_ = props.getTransform("to_world", Transform());
+  film_ = nestedOrDefault<Film>(props, ObjectKind::Film, "hdrfilm");
+  sampler_ = nestedOrDefault<Sampler>(props, ObjectKind::Sampler, "independent");
+  if (props.has("medium")) {
+    medium_ = std::dynamic_pointer_cast<Medium>(props.getObject("medium"));
+    if (!medium_) props.raise("medium", "expected a <medium>");
+  } else {
+    medium_ = props.object<Medium>(ObjectKind::Medium);
+  }
+}
+
+}  // namespace femto
