@@ -81,6 +81,8 @@ ObjectRef ObjectBuilder::build(const XmlNode& node) {
     object = factory_.create(kind, props);
   } catch (const Error& e) {
     throw expanded_.sources.addEcho(e, node);
+  } catch (const std::exception& e) {
+    throw sceneError(node, str("creating \"", props.pluginName(), "\" failed: ", e.what()));
   }
   if (!object) throw sceneError(node, str("plugin \"", props.pluginName(), "\" returned no object"));
   if (!props.id().empty()) object->setId(props.id());
