@@ -11,12 +11,6 @@ namespace {
 
 bool isNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
-const std::string& requireAttribute(const XmlNode& node, const char* name) {
-  const std::string* v = node.attribute(name);
-  if (!v) throw sceneError(node, str("<", node.tag, "> needs a ", name, "=\"...\" attribute"));
-  return *v;
-}
-
 void setDialect(XmlNode& node, int dialect) {
   node.dialect = dialect;
   for (auto& c : node.children) setDialect(c, dialect);

@@ -17,6 +17,21 @@ Error sceneError(const XmlNode& node, const std::string& message) {
   return sceneError(node.location, node.lineText(), message);
 }
 
+const std::string& requireAttribute(const XmlNode& node, const char* name) {
+  const std::string* v = node.attribute(name);
+  if (!v) throw sceneError(node, str("<", node.tag, "> needs a ", name, "=\"...\" attribute"));
+  return *v;
+}
+
+std::string messageWithoutLocation(const Error& e) {
+  std::string message = e.what();
+  std::string prefix = e.where().known() ? e.where().toString() + ": " : "";
+  if (!prefix.empty() && message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+  return message;
+}
+
+bool isEchoed(const Error& e) { return std::string(e.what()).find('\n') != std::string::npos; }
+
 void SourceRegistry::add(std::shared_ptr<const SourceText> source) {
   if (source) files_[source->file] = std::move(source);
 }
@@ -27,13 +42,9 @@ std::string SourceRegistry::lineText(const SourceLocation& where) const {
 }
 
 Error SourceRegistry::addEcho(const Error& e, const XmlNode& fallback) const {
-  std::string message = e.what();
-  if (message.find('\n') != std::string::npos) return e;  // already echoed
-  if (!e.where().known()) return sceneError(fallback, message);
-  // Error() prefixed "file:line: "; rebuild the message around the echo.
-  std::string prefix = e.where().toString() + ": ";
-  if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
-  return sceneError(e.where(), lineText(e.where()), message);
+  if (isEchoed(e)) return e;
+  if (!e.where().known()) return sceneError(fallback, e.what());
+  return sceneError(e.where(), lineText(e.where()), messageWithoutLocation(e));
 }
 
 }  // namespace femto::xml

@@ -16,6 +16,13 @@ std::string withEchoedLine(const std::string& message, const std::string& lineTe
 Error sceneError(const XmlNode& node, const std::string& message);
 Error sceneError(const SourceLocation& where, const std::string& lineText, const std::string& message);
 
+/// The attribute `name` of `node`; its absence is an error at the node.
+const std::string& requireAttribute(const XmlNode& node, const char* name);
+/// e.what() without the "file:line: " prefix Error(where, ...) added.
+std::string messageWithoutLocation(const Error& e);
+/// Has the message already got its line echoed (so it must not be wrapped again)?
+bool isEchoed(const Error& e);
+
 /// All files read for one load, so errors raised later (e.g. by a plugin
 /// constructor, which only knows a SourceLocation) can echo their line.
 class SourceRegistry {

@@ -8,12 +8,6 @@
 namespace femto::xml {
 namespace {
 
-const std::string& requireAttribute(const XmlNode& node, const char* name) {
-  const std::string* v = node.attribute(name);
-  if (!v) throw sceneError(node, str("<", node.tag, "> needs a ", name, "=\"...\" attribute"));
-  return *v;
-}
-
 /// value="x, y, z", or x/y/z attributes where missing ones are `missing`.
 Vec3f vectorAttributes(const XmlNode& node, float missing) {
   if (const std::string* value = node.attribute("value")) return parseVector3(*value);
@@ -71,7 +65,7 @@ Transform parseTransform(const XmlNode& node) {
     try {
       t = transformOp(op) * t;
     } catch (const Error& e) {
-      if (std::string(e.what()).find('\n') != std::string::npos) throw;
+      if (isEchoed(e)) throw;
       throw sceneError(op, e.what());
     }
   }
@@ -105,12 +99,9 @@ void addValueProperty(Properties& props, const XmlNode& node, const FileResolver
     } else if (node.tag == "string") props.setString(name, value, loc);
     else throw Error(str("unsupported tag <", node.tag, ">"));
   } catch (const Error& e) {
-    std::string message = e.what();
-    if (message.find('\n') != std::string::npos) throw;  // already located and echoed
-    // Properties errors (e.g. a name given twice) already carry "file:line: ".
-    std::string prefix = e.where().known() ? e.where().toString() + ": " : "";
-    if (!prefix.empty() && message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
-    throw sceneError(node, message);
+    if (isEchoed(e)) throw;
+    // Properties errors (e.g. a name given twice) carry this element's file:line already.
+    throw sceneError(node, messageWithoutLocation(e));
   }
 }
 
