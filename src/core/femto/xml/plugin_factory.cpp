@@ -16,9 +16,16 @@ class PluginFactory final : public ObjectFactory {
     if (kind == ObjectKind::Scene) return std::make_shared<Scene>(props);
     auto& manager = PluginManager::instance();
     const std::string& name = props.pluginName();
-    auto available = manager.availableNames();
-    if (PluginManager::validName(name) && std::find(available.begin(), available.end(), name) == available.end())
-      throw Error(str("unknown <", kindTag(kind), "> plugin \"", name, "\"", didYouMean(name, available)));
+    try {
+      manager.load(name);
+    } catch (const Error&) {
+      // Say "unknown plugin" in scene words when no such library exists; keep
+      // PluginManager's sentence for libraries that exist but fail to load.
+      auto available = manager.availableNames();
+      if (std::find(available.begin(), available.end(), name) == available.end())
+        throw Error(str("unknown <", kindTag(kind), "> plugin \"", name, "\"", didYouMean(name, available)));
+      throw;
+    }
     // PluginManager reports plugins of another kind and loading failures.
     return manager.create(kind, props);
   }
