@@ -189,6 +189,15 @@ TEST(LoaderErrors, EchoTheOffendingLineIndented) {
   EXPECT_EQ(message.substr(newline), "\n    <float name=\"x\" value=\"$undefined\"/>");
 }
 
+TEST(LoaderErrors, LongLinesAreShortenedInTheEcho) {
+  std::string longValue(400, '1');
+  std::string message = loadertest::errorOf([&] { parse("<scene>\n<x a=\"" + longValue + "\" b=\"$undefined\"/>\n</scene>"); });
+  auto newline = message.find('\n');
+  ASSERT_NE(newline, std::string::npos) << message;
+  EXPECT_EQ(message.size() - newline, 1 + 4 + 160 + 4) << message;  // "\n", indent, 160 characters, " ..."
+  EXPECT_EQ(message.substr(message.size() - 4), " ...");
+}
+
 // Every real scene in the shared corpus passes stages 1-4.
 TEST(LoaderRealScenes, StagesAcceptTheSharedCorpus) {
   std::filesystem::path corpus = std::filesystem::path(FEMTO_SOURCE_DIR) / "../shared/scenes";

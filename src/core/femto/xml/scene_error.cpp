@@ -6,7 +6,11 @@ std::string withEchoedLine(const std::string& message, const std::string& lineTe
   size_t begin = lineText.find_first_not_of(" \t");
   if (begin == std::string::npos) return message;
   size_t end = lineText.find_last_not_of(" \t\r");
-  return message + "\n    " + lineText.substr(begin, end - begin + 1);
+  std::string line = lineText.substr(begin, end - begin + 1);
+  // Sampled spectra and matrices make very long lines; the start locates the element.
+  constexpr size_t kMaxEcho = 160;
+  if (line.size() > kMaxEcho) line = line.substr(0, kMaxEcho) + " ...";
+  return message + "\n    " + line;
 }
 
 Error sceneError(const SourceLocation& where, const std::string& lineText, const std::string& message) {
