@@ -124,6 +124,14 @@ TEST(RenderLoop, SamplesOnlyTheCropWindowInFullFilmCoordinates) {
       result);
   EXPECT_EQ(outside.load(), 0);
   EXPECT_EQ(stats.samples, 33u * 7u);
+  // The film writes only the crop window.
+  auto dir = test::scratchDir("crop");
+  f.develop(result, dir / "crop.exr");
+  Bitmap image = readImage(dir / "crop.exr");
+  EXPECT_EQ(image.width, 33);
+  EXPECT_EQ(image.height, 7);
+  EXPECT_FLOAT_EQ(image.pixel(0, 0)[1], 1.0f);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(RenderLoop, CancelledRenderStillWritesAValidImage) {

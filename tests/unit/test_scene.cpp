@@ -166,6 +166,24 @@ TEST(Scene, IntersectsAnalyticShapeThroughUserGeometry) {
   EXPECT_TRUE(scene->bbox().contains(Point3f(4, 0, 0)));
 }
 
+TEST(Scene, SpawnedRaysLeaveTheSurfaceFarFromTheOrigin) {
+  // Far from the origin the hit point's rounding error is large; the offset
+  // must scale with it or the spawned ray re-hits its own surface.
+  auto mesh = square(Transform::translate({3000, -2000, 1000}) * Transform::scale({10, 10, 1}));
+  auto scene = makeScene({mesh});
+  SurfaceInteraction si;
+  for (float x : {-7.3f, 0.1f, 4.9f}) {
+    ASSERT_TRUE(scene->rayIntersect(Ray({3000 + x, -2000.3f, 1003}, normalize(Vec3f(0.1f, 0.2f, -1))), si));
+    SurfaceInteraction again;
+    EXPECT_FALSE(scene->rayIntersect(si.spawnRay(normalize(Vec3f(0.3f, 0.1f, 1))), again));  // leaves upward
+    EXPECT_FALSE(scene->rayTest(si.spawnRayTo(si.p + Vec3f(-0.5f, 0.2f, 2))));
+    Ray through = si.spawnRay(Vec3f(0, 0, -1));  // crosses to the other side
+    EXPECT_LT(through.o.z, 1000.0f);
+    EXPECT_FALSE(scene->rayIntersect(through, again));
+  }
+  EXPECT_EQ(si.Le(Vec3f(0, 0, 1)), Color3f(0.0f));  // not an emitter
+}
+
 TEST(Scene, PicksEmittersProportionallyToSamplingWeight) {
   std::vector<std::shared_ptr<TestEmitter>> emitters;
   std::vector<std::shared_ptr<Object>> children;

@@ -15,12 +15,7 @@ namespace femto {
 
 class BoxFilter final : public ReconstructionFilter {
  public:
-  explicit BoxFilter(const Properties& props) {
-    float radius = props.getFloat("radius", 0.5f);
-    if (!(radius > 0.0f)) props.raise("radius", str("must be positive, got ", radius));
-    setRadius(radius);
-    buildTable();
-  }
+  explicit BoxFilter(const Properties& props) { initRadiusAndTable(props, 0.5f); }
 
   float eval(float x) const override { return std::abs(x) <= radius() ? 1.0f : 0.0f; }
 

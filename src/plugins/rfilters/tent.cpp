@@ -14,12 +14,7 @@ namespace femto {
 
 class TentFilter final : public ReconstructionFilter {
  public:
-  explicit TentFilter(const Properties& props) {
-    float radius = props.getFloat("radius", 1.0f);
-    if (!(radius > 0.0f)) props.raise("radius", str("must be positive, got ", radius));
-    setRadius(radius);
-    buildTable();
-  }
+  explicit TentFilter(const Properties& props) { initRadiusAndTable(props, 1.0f); }
 
   float eval(float x) const override { return std::max(0.0f, 1.0f - std::abs(x) / radius()); }
 

@@ -16,6 +16,13 @@ void ReconstructionFilter::buildTable() {
   scale_ = float(TableSize) / radius_;
 }
 
+void ReconstructionFilter::initRadiusAndTable(const Properties& props, float def) {
+  float r = props.getFloat("radius", def);
+  if (!(r > 0.0f) || !std::isfinite(r)) props.raise("radius", str("must be positive, got ", r));
+  setRadius(r);
+  buildTable();
+}
+
 float ReconstructionFilter::evalTabulated(float x) const {
   // Nearest table entry; the film's per-pixel weight normalisation makes the
   // small quantisation error harmless (Mitsuba does the same).

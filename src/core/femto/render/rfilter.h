@@ -22,6 +22,9 @@ class ReconstructionFilter : public Object {
  protected:
   void setRadius(float r);
   void buildTable();
+  /// Read a positive "radius" parameter (default `def`) with file:line errors,
+  /// set it and build the table: the whole constructor of simple filters.
+  void initRadiusAndTable(const Properties& props, float def);
 
  private:
   static constexpr int TableSize = 64;
