@@ -79,12 +79,6 @@ TEST(LoaderBuild, UnsupportedTagIsAnError) {
   EXPECT_SCENE_ERROR(buildRecorded("<scene>\n  <bsdf/>\n</scene>"), "test.xml:2", "<bsdf> needs a type=");
 }
 
-TEST(LoaderBuild, ReferenceCycleIsAnError) {
-  EXPECT_SCENE_ERROR(buildRecorded("<scene>\n  <texture type=\"t\" id=\"a\">\n    <ref id=\"a\"/>\n  </texture>\n"
-                                   "  <bsdf type=\"diffuse\"><ref id=\"a\"/></bsdf>\n</scene>"),
-                     "test.xml:2", "refers to itself");
-}
-
 TEST(LoaderBuild, UnusedParameterWarnsOrFailsWhenStrict) {
   RecordingFactory factory;
   factory.reads["diffuse"] = {"reflectance"};

@@ -175,6 +175,20 @@ TEST(LoaderRefs, UnresolvedRefIsAnErrorWithCloseIds) {
                      "test.xml:4", "unresolved reference to id \"whte\" (did you mean \"white\"?)");
 }
 
+TEST(LoaderRefs, ReferenceCyclesAreErrors) {
+  // An object that refers to itself, even when nothing else uses it.
+  EXPECT_SCENE_ERROR(parse("<scene>\n  <texture type=\"t\" id=\"a\">\n    <ref id=\"a\"/>\n  </texture>\n</scene>"),
+                     "test.xml:3", "reference to \"a\" makes a cycle");
+  // A cycle through a nested object: a -> (nested b) -> c -> a.
+  EXPECT_SCENE_ERROR(parse("<scene>\n<texture type=\"t\" id=\"a\"><texture type=\"t\" id=\"b\">"
+                           "<ref id=\"c\"/></texture></texture>\n<texture type=\"t\" id=\"c\">\n"
+                           "  <ref id=\"a\"/>\n</texture>\n</scene>"),
+                     "test.xml:4", "reference to \"a\" makes a cycle");
+  // Sharing is not a cycle.
+  EXPECT_NO_THROW(parse("<scene><texture type=\"t\" id=\"a\"/><bsdf type=\"x\"><ref id=\"a\"/><ref id=\"a\" "
+                        "name=\"b\"/></bsdf></scene>"));
+}
+
 TEST(LoaderRefs, ForwardReferencesResolve) {
   auto p = parse("<scene><shape type=\"sphere\"><ref id=\"later\" name=\"interior\"/></shape>"
                  "<medium type=\"homogeneous\" id=\"later\"/></scene>");

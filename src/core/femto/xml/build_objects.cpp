@@ -72,8 +72,6 @@ Properties ObjectBuilder::properties(const XmlNode& node) {
 
 ObjectRef ObjectBuilder::build(const XmlNode& node) {
   if (auto it = built_.find(&node); it != built_.end()) return it->second;
-  if (!inProgress_.insert(&node).second)
-    throw sceneError(node, str("object \"", node.attributeOr("id", ""), "\" refers to itself (reference cycle)"));
   Properties props = properties(node);
   ObjectKind kind = *kindFromTag(node.tag);
   ObjectRef object;
@@ -87,7 +85,6 @@ ObjectRef ObjectBuilder::build(const XmlNode& node) {
   if (!object) throw sceneError(node, str("plugin \"", props.pluginName(), "\" returned no object"));
   if (!props.id().empty()) object->setId(props.id());
   reportUnused(props, node);
-  inProgress_.erase(&node);
   built_[&node] = object;
   return object;
 }

@@ -2,7 +2,6 @@
 // Parse stage 5: create objects bottom-up from the expanded, resolved tree.
 #include <map>
 #include <memory>
-#include <set>
 
 #include <femto/core/properties.h>
 #include <femto/xml/loader.h>
@@ -33,6 +32,7 @@ class ObjectBuilder {
       : expanded_(expanded), index_(index), options_(options), factory_(factory) {}
 
   /// Create the object of `node` (children first; each referenced object once).
+  /// Reference cycles were refused by resolveReferences.
   ObjectRef build(const XmlNode& node);
   /// The Properties `node`'s object is created from (nested objects built),
   /// including the --resolution/--spp overrides. Exposed for tests.
@@ -47,7 +47,6 @@ class ObjectBuilder {
   const LoadOptions& options_;
   ObjectFactory& factory_;
   std::map<const XmlNode*, ObjectRef> built_;
-  std::set<const XmlNode*> inProgress_;
 };
 
 }  // namespace femto::xml

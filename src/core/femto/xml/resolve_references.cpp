@@ -37,12 +37,40 @@ void linkRefs(XmlNode& node, const std::map<std::string, std::string>& aliases, 
   for (auto& c : node.children) linkRefs(c, aliases, index);
 }
 
+/// Depth-first walk over what each object needs (nested objects and ref
+/// targets). `onWalk[n]` is false while n is being walked, true when finished;
+/// reaching an object that is still being walked means a reference cycle.
+void checkCycles(const XmlNode& node, std::map<const XmlNode*, bool>& onWalk) {
+  if (node.tag != "ref") {
+    for (const auto& c : node.children) checkCycles(c, onWalk);
+    return;
+  }
+  const XmlNode* target = node.target;
+  auto it = onWalk.find(target);
+  if (it != onWalk.end()) {
+    if (!it->second)
+      throw sceneError(node, str("reference to \"", target->attributeOr("id", ""),
+                                 "\" makes a cycle (an object cannot contain itself)"));
+    return;
+  }
+  onWalk[target] = false;
+  for (const auto& c : target->children) checkCycles(c, onWalk);
+  onWalk[target] = true;
+}
+
 }  // namespace
 
 ObjectIndex resolveReferences(XmlNode& root, const std::map<std::string, std::string>& aliases) {
   ObjectIndex index;
   collectIds(root, index);
   linkRefs(root, aliases, index);
+  std::map<const XmlNode*, bool> onWalk;
+  for (const auto& [id, node] : index.byId) {
+    if (onWalk.count(node)) continue;
+    onWalk[node] = false;
+    for (const auto& c : node->children) checkCycles(c, onWalk);
+    onWalk[node] = true;
+  }
   return index;
 }
 

@@ -15,7 +15,8 @@ struct ObjectIndex {
 };
 
 /// Throws (file:line, echoed) for a duplicate id, a <ref> without id, and a
-/// <ref> to an unknown id (with close ids suggested). `aliases` maps as="" names to ids.
+/// <ref> to an unknown id (with close ids suggested), and references that make
+/// a cycle (an object that contains itself, directly or through others). `aliases` maps as="" names to ids.
 ObjectIndex resolveReferences(XmlNode& root, const std::map<std::string, std::string>& aliases);
 
 }  // namespace femto::xml
