@@ -87,3 +87,29 @@ TEST(Perspective, FocalLengthIs35mmEquivalentOnTheDiagonal) {
 
 }  // namespace
 }  // namespace femto
+
+namespace femto {
+namespace {
+
+TEST(Perspective, ReadsMitsubaCameraAndFilmParameters) {
+  // Parameters real Mitsuba scenes give: all must be read (strict mode).
+  Properties film("hdrfilm");
+  film.setString("file_format", "openexr");
+  film.setString("pixel_format", "rgb");
+  film.setString("component_format", "float16");
+  film.setBool("banner", false);
+  film.setBool("high_quality_edges", false);
+  auto filmObj = test::makePlugin<Object>(ObjectKind::Film, film);
+  EXPECT_TRUE(film.unqueried().empty());
+  Properties props("perspective");
+  props.setFloat("fov", 40);
+  props.setFloat("focus_distance", 1000);
+  props.setFloat("shutter_open", 0);
+  props.setFloat("shutter_close", 0);
+  props.setObject("film", filmObj);
+  test::makePlugin<Sensor>(ObjectKind::Sensor, props);
+  EXPECT_TRUE(props.unqueried().empty());
+}
+
+}  // namespace
+}  // namespace femto

@@ -11,6 +11,7 @@
 // | focal_length| string    | "50mm"   | 35 mm-equivalent focal length (instead of fov; spans the diagonal) |
 // | near_clip   | float     | 0.01     | distance (scene units) before which nothing is seen          |
 // | far_clip    | float     | 10000    | distance beyond which nothing is seen                        |
+// | focus_distance | float  | far_clip | accepted for Mitsuba scenes; a pinhole is in focus everywhere |
 #include <cmath>
 #include <string>
 
@@ -26,6 +27,8 @@ class PerspectiveCamera final : public Sensor {
     farClip_ = props.getFloat("far_clip", 10000.0f);
     if (!(nearClip_ > 0.0f)) props.raise("near_clip", str("must be positive, got ", nearClip_));
     if (!(farClip_ > nearClip_)) props.raise("far_clip", str("must be larger than near_clip (", nearClip_, ")"));
+    // Mitsuba's projective cameras all take a focus distance; only thinlens uses it.
+    if (!(props.getFloat("focus_distance", farClip_) > 0.0f)) props.raise("focus_distance", "must be positive");
 
     const Point2i size = film_->size();
     const float width = float(size.x), height = float(size.y);

@@ -14,6 +14,9 @@ Sensor::Sensor(const Properties& props) {
   } else {
     medium_ = props.object<Medium>(ObjectKind::Medium);
   }
+  // Mitsuba sensors take a shutter interval for motion blur; femto's scenes are static.
+  float open = props.getFloat("shutter_open", 0.0f), close = props.getFloat("shutter_close", open);
+  if (close < open) props.raise("shutter_close", str("must not be before shutter_open (", open, ")"));
 }
 
 }  // namespace femto

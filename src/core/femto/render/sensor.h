@@ -15,7 +15,8 @@ class Medium;
 class Sensor : public Object {
  public:
   /// Reads "to_world", the nested <film> (default hdrfilm) and <sampler>
-  /// (default independent), and an optional "medium" ref the camera sits in.
+  /// (default independent), an optional "medium" ref the camera sits in, and
+  /// Mitsuba's "shutter_open"/"shutter_close" (accepted; scenes are static).
   explicit Sensor(const Properties& props);
   ObjectKind kind() const override { return ObjectKind::Sensor; }
 
