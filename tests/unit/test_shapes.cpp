@@ -6,6 +6,7 @@
 
 #include <femto/math/pcg32.h>
 #include <femto/render/mesh.h>
+#include <femto/xml/loader.h>
 
 #include "plugin_util.h"
 
@@ -234,9 +235,23 @@ TEST_F(ObjShape, AFileWithoutFacesIsAnError) {
   EXPECT_NE(message.find("scene.xml:5"), std::string::npos) << message;
 }
 
-TEST_F(ObjShape, RelativeNamesResolveBesideTheSceneFile) {
+TEST_F(ObjShape, LoadsFromXmlWithAPathRelativeToTheScene) {
   write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  Properties props;
-  props.setString("filename", "tri.obj", {(dir_ / "scene.xml").string(), 2});
-  EXPECT_FLOAT_EQ(makeShape("obj", props)->surfaceArea(), 0.5f);
+  LoadOptions options;
+  options.strict = true;
+  auto shape = std::dynamic_pointer_cast<Shape>(loadObjectFromString(
+      R"(<shape type="obj" version="3.0.0"><string name="filename" value="tri.obj"/>
+         <transform name="to_world"><scale value="2"/></transform></shape>)",
+      dir_, options));
+  ASSERT_NE(shape, nullptr);
+  EXPECT_FLOAT_EQ(shape->surfaceArea(), 2.0f);
+}
+
+TEST_F(ObjShape, ADirectoryIsNotAnObjFile) {
+  std::filesystem::create_directories(dir_ / "folder.obj");
+  Properties props("obj");
+  props.setString("filename", (dir_ / "folder.obj").string(), {"scene.xml", 6});
+  std::string message = errorMessageOf([&] { makeShape("obj", props); });
+  EXPECT_NE(message.find("scene.xml:6"), std::string::npos) << message;
+  EXPECT_NE(message.find("folder.obj"), std::string::npos) << message;
 }

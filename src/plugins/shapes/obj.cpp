@@ -4,7 +4,7 @@
 //
 // | name         | type      | default  | meaning                                          | unit |
 // |--------------|-----------|----------|--------------------------------------------------|------|
-// | filename     | string    | required | OBJ file; relative paths resolve against the scene file's folder | - |
+// | filename     | string    | required | OBJ file (the loader resolves relative names)    | -    |
 // | to_world     | transform | identity | object-to-world placement                        | -    |
 // | flip_normals | boolean   | false    | reverse geometric and shading normals            | -    |
 // | face_normals | boolean   | false    | ignore the file's vertex normals (flat shading)  | -    |
@@ -20,18 +20,6 @@
 
 namespace femto {
 namespace {
-
-/// The loader resolves file names against the scene's folder; a name that is
-/// still relative is tried beside the scene file that wrote it as well.
-std::filesystem::path resolveFile(const Properties& props, const std::string& name) {
-  std::filesystem::path path(name);
-  if (path.is_relative() && !std::filesystem::exists(path)) {
-    std::filesystem::path sceneFile(props.location("filename").file);
-    std::filesystem::path beside = sceneFile.parent_path() / path;
-    if (!sceneFile.empty() && std::filesystem::exists(beside)) return beside;
-  }
-  return path;
-}
 
 /// OBJ faces index positions, normals and uvs separately; a renderer vertex
 /// is one distinct (position, normal, uv) triple.
@@ -49,7 +37,8 @@ class ObjMesh final : public TriangleMesh {
     Transform toWorld = props.getTransform("to_world", Transform());
     bool flipNormals = props.getBool("flip_normals", false);
     bool faceNormals = props.getBool("face_normals", false);
-    std::filesystem::path path = resolveFile(props, filename_);
+    // The loader has already resolved relative names against the scene's folder.
+    std::filesystem::path path(filename_);
     if (!std::filesystem::is_regular_file(path))
       props.raise("filename", str("cannot open OBJ file \"", path.string(), "\": no such file"));
 
