@@ -1,7 +1,44 @@
-// femto command-line interface (placeholder until the CLI lands).
+// femto: the command-line renderer. Subcommands live in *_command.cpp; this
+// file only parses, dispatches and turns failures into one-line errors.
+#include <exception>
 #include <iostream>
 
-int main() {
-  std::cout << "femto 0.1.0\n";
-  return 0;
+#include <CLI/CLI.hpp>
+
+#include <femto/core/error.h>
+#include <femto/core/plugin.h>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"femto: a physically based renderer for (time-resolved) light transport", "femto"};
+  app.set_version_flag("--version", femto::str("femto ", FEMTO_VERSION, " (plugin ABI ", femto::FemtoAbiVersion, ')'));
+  app.require_subcommand(1);
+  app.footer("Run `femto <command> --help` for the options of a command.");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return femto::str("error: ", e.what(), "\nRun `femto --help` or `femto <command> --help` for the options.\n");
+  });
+
+  femto::cli::Command render = femto::cli::addRenderCommand(app);
+  femto::cli::Command plugins = femto::cli::addPluginsCommand(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; bad arguments print the problem and exit 2
+    // (the usual code for usage errors), distinct from a failed render (1).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  try {
+    if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("plugins")) return plugins();
+    return 1;  // unreachable: require_subcommand(1)
+  } catch (const femto::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+  } catch (const std::exception& e) {
+    // Not a user error: still one line, never a crash or a stack trace.
+    std::cerr << "error: internal error: " << e.what() << '\n';
+  }
+  return 1;
 }

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Ctrl-C during `femto render`: the render must stop within seconds, write a
+# valid partial image and exit with 130.
+#   interrupt_render.sh FEMTO SCENE OUTPUT_DIR
+set -u
+femto=$1 scene=$2 out_dir=$3
+image=$out_dir/interrupted.exr
+rm -f "$image"
+mkdir -p "$out_dir"
+# Far more samples than can finish before the signal.
+"$femto" render "$scene" -o "$image" --spp 100000 --no-progress >"$out_dir/interrupt.log" 2>&1 &
+pid=$!
+sleep 2
+kill -INT "$pid"
+# A cancelled render must not hang: give it 60 s to write the partial image.
+for _ in $(seq 600); do
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.1
+done
+if kill -0 "$pid" 2>/dev/null; then
+  kill -KILL "$pid"
+  echo "femto did not stop within 60 s of Ctrl-C"; cat "$out_dir/interrupt.log"; exit 1
+fi
+wait "$pid"; code=$?
+cat "$out_dir/interrupt.log"
+[ "$code" -eq 130 ] || { echo "expected exit 130 after Ctrl-C, got $code"; exit 1; }
+[ -s "$image" ] || { echo "no partial image at $image"; exit 1; }
+grep -q "interrupted" "$out_dir/interrupt.log" || { echo "no interruption message"; exit 1; }
+echo "partial image written: $image"

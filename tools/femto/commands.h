@@ -1,0 +1,20 @@
+#pragma once
+// The femto subcommands. Each registers its options on the CLI11 app and
+// returns the action that runs it once the command line has been parsed.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace femto::cli {
+
+/// Runs a parsed subcommand; returns the process exit code.
+using Command = std::function<int()>;
+
+Command addRenderCommand(CLI::App& app);
+Command addPluginsCommand(CLI::App& app);
+
+/// Adds `-p,--plugin-dir DIR` (repeatable) to `command`; the returned action puts
+/// the directories first in the plugin search path, in the order given.
+std::function<void()> addPluginDirOption(CLI::App& command, std::vector<std::string>& dirs);
+
+}  // namespace femto::cli

@@ -1,0 +1,112 @@
+// `femto render scene.xml`: load, render with the scene's integrator, write
+// the image, print a one-line summary.
+#include <cstdint>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <tbb/global_control.h>
+
+#include <femto/core/log.h>
+#include <femto/render/integrator.h>
+#include <femto/render/scene.h>
+#include <femto/xml/loader.h>
+
+#include "arguments.h"
+#include "commands.h"
+#include "interrupt.h"
+
+namespace fs = std::filesystem;
+
+namespace femto::cli {
+namespace {
+
+struct RenderSettings {
+  std::string scene;
+  std::string output;
+  std::vector<std::string> defines;
+  int threads = 0;
+  uint64_t seed = 0;
+  int sampleCount = 0;  // 0: the scene's
+  std::string resolution;
+  bool strict = false;
+  bool noProgress = false;
+  std::vector<std::string> pluginDirs;
+  std::function<void()> applyPluginDirs;
+};
+
+/// `-o` or `<scene stem>.exr` in the current directory.
+fs::path outputPath(const RenderSettings& settings) {
+  if (!settings.output.empty()) return settings.output;
+  return fs::path(settings.scene).stem().string() + ".exr";
+}
+
+LoadOptions loadOptions(const RenderSettings& settings) {
+  LoadOptions options;
+  options.defines = parseDefines(settings.defines);
+  options.strict = settings.strict;
+  if (!settings.resolution.empty()) options.resolution = parseResolution(settings.resolution);
+  if (settings.sampleCount > 0) options.sampleCount = settings.sampleCount;
+  return options;
+}
+
+void printSummary(const fs::path& output, const RenderStats& stats, bool interrupted) {
+  std::cout << std::fixed << std::setprecision(1) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
+            << stats.seconds << " s (" << stats.samples << " samples)\n";
+  if (stats.invalidSamples > 0)
+    logWarn(stats.invalidSamples, " of ", stats.samples,
+            " samples were NaN, infinite or negative and were left out of the image: the integrator has a bug");
+  if (interrupted) std::cout << "interrupted by Ctrl-C\n";
+}
+
+int render(const RenderSettings& settings) {
+  settings.applyPluginDirs();
+  // Parse every argument before the (possibly slow) scene load.
+  LoadOptions load = loadOptions(settings);
+  RenderOptions options;
+  options.threads = settings.threads;
+  options.seed = settings.seed;
+  options.output = outputPath(settings);
+  options.progress = !settings.noProgress;
+
+  std::optional<tbb::global_control> threadLimit;
+  if (settings.threads > 0)
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+
+  std::shared_ptr<Scene> scene = loadScene(settings.scene, load);
+  InterruptGuard interrupt;
+  options.cancel = &interrupt.cancelFlag();
+  RenderStats stats = scene->integrator().render(*scene, options);
+  printSummary(options.output, stats, interrupt.interrupted());
+  // 128 + SIGINT tells scripts the image is partial.
+  return interrupt.interrupted() ? 130 : 0;
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& app) {
+  auto s = std::make_shared<RenderSettings>();
+  CLI::App* command = app.add_subcommand("render", "Render a Mitsuba XML scene to an OpenEXR image");
+  command->add_option("scene", s->scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required()->check(CLI::ExistingFile);
+  command->add_option("-o,--output", s->output, "Output image (default: <scene name>.exr in the current directory)")
+      ->type_name("FILE");
+  command->add_option("-D,--define", s->defines, "Set a scene <default> or $name: -D spp=64 (repeatable)")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
+  command->add_option("-t,--threads", s->threads, "Worker threads (default: all cores)")
+      ->type_name("N")
+      ->check(PositiveInteger);
+  command->add_option("--seed", s->seed, "Base random seed; the image depends only on scene and seed")->type_name("N");
+  command->add_option("--spp", s->sampleCount, "Samples per pixel (overrides the scene's sampler)")
+      ->type_name("N")
+      ->check(PositiveInteger);
+  command->add_option("--resolution", s->resolution, "Film size (overrides the scene's film)")->type_name("WxH");
+  command->add_flag("--strict", s->strict, "Treat unused scene parameters as errors");
+  command->add_flag("--no-progress", s->noProgress, "Do not draw the progress bar");
+  s->applyPluginDirs = addPluginDirOption(*command, s->pluginDirs);
+  return [s] { return render(*s); };
+}
+
+}  // namespace femto::cli
