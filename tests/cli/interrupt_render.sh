@@ -7,10 +7,24 @@ femto=$1 scene=$2 out_dir=$3
 image=$out_dir/interrupted.exr
 rm -f "$image"
 mkdir -p "$out_dir"
-# Far more samples than can finish before the signal.
-"$femto" render "$scene" -o "$image" --spp 100000 --no-progress >"$out_dir/interrupt.log" 2>&1 &
+# Minutes of work in 64 tiles of seconds each: the render loop stops between
+# tiles, so a tile must be short for the stop to be quick.
+"$femto" render "$scene" -o "$image" --resolution 256x256 --spp 4096 --no-progress >"$out_dir/interrupt.log" 2>&1 &
 pid=$!
-sleep 2
+# Wait until femto catches SIGINT (bit 2 of SigCgt in /proc/PID/status): it
+# installs its handler once the scene is loaded, just before rendering.
+catches_sigint() {
+  local mask
+  mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status" 2>/dev/null) || return 1
+  [ -n "$mask" ] && (( (16#$mask & 2) != 0 ))
+}
+for _ in $(seq 600); do
+  catches_sigint && break
+  kill -0 "$pid" 2>/dev/null || { echo "femto exited before rendering"; cat "$out_dir/interrupt.log"; exit 1; }
+  sleep 0.1
+done
+catches_sigint || { kill -KILL "$pid"; echo "femto never installed its Ctrl-C handler"; exit 1; }
+sleep 1
 kill -INT "$pid"
 # A cancelled render must not hang: give it 60 s to write the partial image.
 for _ in $(seq 600); do
