@@ -59,6 +59,32 @@ struct Estimate {
   Color3f mean, standardError;
 };
 
+/// Sample mean and its standard error, per channel, from running sums.
+class MeanAccumulator {
+ public:
+  void add(const Color3f& v) {
+    ++n_;
+    for (int c = 0; c < 3; ++c) {
+      sum_[c] += v[c];
+      sumSq_[c] += double(v[c]) * v[c];
+    }
+  }
+  Estimate estimate() const {
+    Estimate e;
+    for (int c = 0; c < 3; ++c) {
+      double mean = sum_[c] / n_;
+      double variance = std::max(0.0, (sumSq_[c] / n_ - mean * mean) * n_ / (n_ - 1));
+      e.mean[c] = float(mean);
+      e.standardError[c] = float(std::sqrt(variance / n_));
+    }
+    return e;
+  }
+
+ private:
+  long n_ = 0;
+  double sum_[3] = {0, 0, 0}, sumSq_[3] = {0, 0, 0};
+};
+
 /// Mean and standard error of Li over `n` independent rays from `makeRay`.
 template <typename RayFn>
 Estimate estimateLi(const Scene& scene, int n, RayFn&& makeRay) {
@@ -66,24 +92,14 @@ Estimate estimateLi(const Scene& scene, int n, RayFn&& makeRay) {
   EXPECT_NE(integrator, nullptr);
   std::unique_ptr<Sampler> sampler = scene.sensor().sampler().clone();
   PCG32 rng(17, 23);
-  double sum[3] = {0, 0, 0}, sumSq[3] = {0, 0, 0};
+  MeanAccumulator acc;
   for (int i = 0; i < n; ++i) {
     sampler->startPixel(5, uint64_t(i));
     Color3f L = integrator->Li(makeRay(rng), scene, *sampler);
     EXPECT_TRUE(L.isValid()) << L;
-    for (int c = 0; c < 3; ++c) {
-      sum[c] += L[c];
-      sumSq[c] += double(L[c]) * L[c];
-    }
+    acc.add(L);
   }
-  Estimate e;
-  for (int c = 0; c < 3; ++c) {
-    double mean = sum[c] / n;
-    double variance = std::max(0.0, (sumSq[c] / n - mean * mean) * n / (n - 1));
-    e.mean[c] = float(mean);
-    e.standardError[c] = float(std::sqrt(variance / n));
-  }
-  return e;
+  return acc.estimate();
 }
 
 void expectWithinErrorBars(const Estimate& e, const Color3f& expected) {
@@ -157,20 +173,10 @@ TEST(PathFurnace, RenderedImageMatchesTheClosedForm) {
   ASSERT_EQ(image.width, size);
   ASSERT_EQ(image.height, size);
   ASSERT_GE(image.channels, 3);
-  Estimate e;
-  const int n = size * size;
-  for (int c = 0; c < 3; ++c) {
-    double sum = 0, sumSq = 0;
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        double v = image.pixel(x, y)[c];
-        sum += v;
-        sumSq += v * v;
-      }
-    double mean = sum / n;
-    e.mean[c] = float(mean);
-    e.standardError[c] = float(std::sqrt(std::max(0.0, (sumSq / n - mean * mean) * n / (n - 1)) / n));
-  }
+  MeanAccumulator pixels;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) pixels.add(Color3f(image.pixel(x, y)[0], image.pixel(x, y)[1], image.pixel(x, y)[2]));
+  Estimate e = pixels.estimate();
   expectWithinErrorBars(e, furnaceRadiance(kRho, kLe, -1));
   std::filesystem::remove_all(dir);
 }
@@ -221,4 +227,37 @@ TEST(PathPointLight, TheBackOfTheOneSidedPlaneIsBlackAndDepthOneSeesNoLight) {
   auto direct = pointOverPlaneScene(1);
   Estimate above = estimateLi(*direct, 4, [](PCG32&) { return Ray({0, 0, 3}, {0, 0, -1}); });
   EXPECT_EQ(above.mean, Color3f(0.0f));
+}
+
+TEST(PathSphereLight, DirectLightingMatchesTheSphereFormFactor) {
+  // A black sphere of radius R emitting Le, centred at c over the diffuse
+  // plane z = 0. Seen from x (with the sphere wholly above x's horizon) it
+  // delivers E = pi Le (R / |c - x|)^2 cos(theta) (the form factor of a
+  // sphere), so with max_depth 2 (direct lighting only) L = rho / pi * E.
+  // The sphere subtends a large solid angle, so both emitter and BSDF
+  // sampling contribute and their MIS weights must sum to one.
+  const float R = 1.0f;
+  const Point3f c(0, 0, 2);
+  const Color3f Le(2.0f, 1.0f, 0.5f);
+  auto scene = loadStrict(str(R"(<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="2"/></integrator>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="20"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(kPlaneRho), R"("/></bsdf>
+  </shape>
+  <shape type="sphere">
+    <point name="center" x=")", c.x, R"(" y=")", c.y, R"(" z=")", c.z, R"("/>
+    <float name="radius" value=")", R, R"("/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
+  </shape>
+</scene>)"));
+  const Point3f eye(3.0f, -2.0f, 0.5f);
+  for (Point3f x : {Point3f(0, 0, 0), Point3f(1.5f, 0, 0), Point3f(0.5f, -1.0f, 0)}) {
+    SCOPED_TRACE(str("point ", x));
+    float d = distance(c, x);
+    float cosTheta = (c.z - x.z) / d;
+    Color3f expected = kPlaneRho * Le * (R * R / (d * d) * cosTheta);
+    expectWithinErrorBars(estimateLi(*scene, 20000, [&](PCG32&) { return Ray(eye, normalize(x - eye)); }), expected);
+  }
 }
