@@ -10,6 +10,7 @@
 #include <femto/core/spelling.h>
 
 #include "../plugins/test_object.h"
+#include "plugin_util.h"
 
 namespace femto {
 namespace {
@@ -27,18 +28,6 @@ PluginManager& manager() {
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-/// The message of the femto::Error `f` throws (fails the test if it throws nothing).
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected a femto::Error";
-  return {};
 }
 
 TEST(PluginManager, LoadsOnlyWhatIsNamed) {
@@ -70,18 +59,18 @@ TEST(PluginManager, NothingLoadedAtStartup) {
 }
 
 TEST(PluginManager, RefusesOtherAbiByName) {
-  std::string message = errorOf([] { manager().load("test_wrong_abi"); });
+  std::string message = test::errorMessageOf([] { manager().load("test_wrong_abi"); });
   std::string file = (kTestPluginDir / "test_wrong_abi.so").string();
   EXPECT_EQ(message, "plugin \"test_wrong_abi\" (" + file + ") was built for femto plugin ABI " +
                          std::to_string(FemtoAbiVersion + 1) + ", this femto has ABI " +
                          std::to_string(FemtoAbiVersion) + ": rebuild it");
   EXPECT_FALSE(contains(manager().loadedPlugins(), "test_wrong_abi"));
   // Same rule through an explicit file.
-  EXPECT_NE(errorOf([&] { manager().loadFile(file); }).find("was built for femto plugin ABI"), std::string::npos);
+  EXPECT_NE(test::errorMessageOf([&] { manager().loadFile(file); }).find("was built for femto plugin ABI"), std::string::npos);
 }
 
 TEST(PluginManager, MissingPluginNamesSearchPathAndCloseMatches) {
-  std::string message = errorOf([] { manager().load("test_goood"); });
+  std::string message = test::errorMessageOf([] { manager().load("test_goood"); });
   EXPECT_NE(message.find("plugin \"test_goood\" not found"), std::string::npos) << message;
   for (const auto& dir : manager().searchPath()) EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
   EXPECT_NE(message.find("did you mean \"test_good\""), std::string::npos) << message;
@@ -90,7 +79,7 @@ TEST(PluginManager, MissingPluginNamesSearchPathAndCloseMatches) {
 
 TEST(PluginManager, RefusesInvalidNames) {
   for (std::string name : {"", "../test_good", "dir/test_good", "test_good.so", "/tmp/x", "has space", "semi;colon"}) {
-    std::string message = errorOf([&] { manager().load(name); });
+    std::string message = test::errorMessageOf([&] { manager().load(name); });
     EXPECT_NE(message.find("invalid plugin name \"" + name + "\""), std::string::npos) << message;
     EXPECT_FALSE(PluginManager::validName(name)) << name;
   }
@@ -98,13 +87,13 @@ TEST(PluginManager, RefusesInvalidNames) {
 }
 
 TEST(PluginManager, DescriptorNameMustMatchFileName) {
-  std::string message = errorOf([] { manager().load("test_misnamed"); });
+  std::string message = test::errorMessageOf([] { manager().load("test_misnamed"); });
   EXPECT_NE(message.find("plugin \"test_misnamed\""), std::string::npos) << message;
   EXPECT_NE(message.find("declares the name \"something_else\""), std::string::npos) << message;
 }
 
 TEST(PluginManager, LibraryWithoutEntryPointIsNotAPlugin) {
-  std::string message = errorOf([] { manager().load("test_no_entry"); });
+  std::string message = test::errorMessageOf([] { manager().load("test_no_entry"); });
   EXPECT_NE(message.find("is not a femto plugin"), std::string::npos) << message;
   EXPECT_NE(message.find(PluginEntryPoint), std::string::npos) << message;
 }
@@ -112,7 +101,7 @@ TEST(PluginManager, LibraryWithoutEntryPointIsNotAPlugin) {
 TEST(PluginManager, KindMismatchNamesBothKinds) {
   Properties props("test_good");
   props.setLocation({"scene.xml", 7});
-  std::string message = errorOf([&] { manager().create(ObjectKind::BSDF, props); });
+  std::string message = test::errorMessageOf([&] { manager().create(ObjectKind::BSDF, props); });
   EXPECT_EQ(message, "scene.xml:7: plugin \"test_good\" creates a <texture>, but it is used here as a <bsdf>");
 }
 
