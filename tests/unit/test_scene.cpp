@@ -224,6 +224,26 @@ TEST(Scene, PicksEmittersProportionallyToSamplingWeight) {
   EXPECT_FLOAT_EQ(scene->pdfEmitterDirection(Point3f(0), ds, emitters[1].get()), 0.5f * 2.0f / 8);
 }
 
+TEST(Scene, CollectsShapeEmittersOnce) {
+  struct Attachable final : Emitter {
+    explicit Attachable(const Properties& p) : Emitter(p) {}
+    Color3f sampleDirection(const Point3f&, const Point2f&, DirectionSample&) const override { return {}; }
+    float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0; }
+    bool isDelta() const override { return false; }
+    void setShape(const Shape* s) override { shape = s; }
+    const Shape* shape = nullptr;
+  };
+  auto emitter = std::make_shared<Attachable>(Properties("test_area"));
+  Properties shapeProps("test_mesh");
+  shapeProps.setObject("emitter", emitter);
+  auto mesh = square(Transform(), false, shapeProps);
+  EXPECT_EQ(emitter->shape, mesh.get());  // the Shape constructor attaches it
+  EXPECT_EQ(mesh->emitter(), emitter.get());
+  auto scene = makeScene({mesh, emitter});  // also listed at top level
+  ASSERT_EQ(scene->emitters().size(), 1u);
+  EXPECT_FLOAT_EQ(scene->emitterPickProbability(emitter.get()), 1.0f);
+}
+
 TEST(Scene, ShadowRayToEmitterIsBlocked) {
   Properties p("test_emitter");
   auto emitter = std::make_shared<TestEmitter>(p);

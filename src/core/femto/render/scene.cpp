@@ -15,8 +15,10 @@ Scene::Scene(const Properties& props) {
   for (const auto& obj : props.objectsOfKind(ObjectKind::Shape)) shapes_.push_back(std::static_pointer_cast<Shape>(obj));
   for (const auto& obj : props.objectsOfKind(ObjectKind::Emitter))
     emitters_.push_back(std::static_pointer_cast<Emitter>(obj));
+  // Area emitters come from their shapes; one also listed at top level counts once.
   for (const auto& shape : shapes_)
-    if (shape->emitterRef()) emitters_.push_back(shape->emitterRef());
+    if (shape->emitterRef() && std::find(emitters_.begin(), emitters_.end(), shape->emitterRef()) == emitters_.end())
+      emitters_.push_back(shape->emitterRef());
   sensor_ = nestedOrDefault<Sensor>(props, ObjectKind::Sensor, "perspective");
   integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
 
