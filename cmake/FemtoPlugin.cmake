@@ -14,6 +14,9 @@ function(femto_add_plugin name)
     OUTPUT_NAME ${name}
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON)
+  # A symbol the core does not export must fail the plugin's link, not the
+  # dlopen of a scene that uses it later.
+  target_link_options(${name} PRIVATE LINKER:--no-undefined)
   if(DEFINED FEMTO_PLUGIN_OUTPUT_DIR)
     set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${FEMTO_PLUGIN_OUTPUT_DIR})
   endif()
