@@ -104,7 +104,10 @@ Estimate estimateLi(const Scene& scene, int n, RayFn&& makeRay) {
 
 void expectWithinErrorBars(const Estimate& e, const Color3f& expected) {
   for (int c = 0; c < 3; ++c) {
-    float tolerance = 5.0f * e.standardError[c] + 1e-5f * expected[c];
+    // 5 sigma, plus 2e-4 relative for zero- or near-zero-variance estimators:
+    // the core offsets spawned rays by RayEpsilon = 1e-4 (relative to scene
+    // scale), which perturbs the geometry, and so the estimate, at that level.
+    float tolerance = 5.0f * e.standardError[c] + 2e-4f * expected[c];
     EXPECT_NEAR(e.mean[c], expected[c], tolerance)
         << "channel " << c << ": standard error " << e.standardError[c];
   }

@@ -46,6 +46,7 @@ class PathIntegrator final : public SamplingIntegrator {
     Point3f prevP = ray.o;
     float prevBsdfPdf = 1.0f;
     bool prevDelta = true;  // camera rays count as delta: no other strategy finds what they see
+    float travelled = 0.0f;  // along ray.d since prevP, across interfaces the path passed straight through
     float etaScale = 1.0f;
     for (int depth = 0;; ) {
       SurfaceInteraction si;
@@ -63,7 +64,7 @@ class PathIntegrator final : public SamplingIntegrator {
             ds.p = si.p;
             ds.n = si.n;
             ds.d = ray.d;
-            ds.dist = si.t;
+            ds.dist = travelled + si.t;
             weight = powerHeuristic(prevBsdfPdf, scene.pdfEmitterDirection(prevP, ds, emitter));
           }
           L += throughput * Le * weight;
@@ -73,6 +74,7 @@ class PathIntegrator final : public SamplingIntegrator {
       if (++depth == maxDepth_) break;  // the next segment would exceed max_depth
       const BSDF* bsdf = si.bsdf();
       if (!bsdf) {  // an interface that only bounds media: continue straight on
+        travelled += si.t;
         ray = si.spawnRay(ray.d);
         --depth;
         continue;
@@ -99,6 +101,7 @@ class PathIntegrator final : public SamplingIntegrator {
       throughput *= bsdfWeight;
       etaScale *= bs.eta * bs.eta;
       prevP = si.p;
+      travelled = 0.0f;
       prevBsdfPdf = bs.pdf;
       prevDelta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
       ray = si.spawnRay(si.toWorld(bs.wo));
