@@ -119,7 +119,8 @@ class PathIntegrator final : public SamplingIntegrator {
   }
 
   std::string toString() const override {
-    return str("PathIntegrator[max_depth=", maxDepth_, ", rr_depth=", rrDepth_, ", hide_emitters=", hideEmitters_, "]");
+    return str("PathIntegrator[max_depth=", maxDepth_, ", rr_depth=", rrDepth_,
+               ", hide_emitters=", hideEmitters_ ? "true" : "false", "]");
   }
 
  private:

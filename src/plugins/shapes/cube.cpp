@@ -43,7 +43,8 @@ class Cube final : public TriangleMesh {
   }
 
   std::string toString() const override {
-    return str("Cube[to_world=\n", toWorld_.matrix(), ", flip_normals=", flipNormals_, ", area=", surfaceArea(), "]");
+    return str("Cube[to_world=\n", toWorld_.matrix(), ", flip_normals=", flipNormals_ ? "true" : "false",
+               ", area=", surfaceArea(), "]");
   }
 
  private:

@@ -25,7 +25,8 @@ class Rectangle final : public TriangleMesh {
   }
 
   std::string toString() const override {
-    return str("Rectangle[to_world=\n", toWorld_.matrix(), ", flip_normals=", flipNormals_, ", area=", surfaceArea(), "]");
+    return str("Rectangle[to_world=\n", toWorld_.matrix(), ", flip_normals=", flipNormals_ ? "true" : "false",
+               ", area=", surfaceArea(), "]");
   }
 
  private:

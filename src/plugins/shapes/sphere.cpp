@@ -91,7 +91,8 @@ class Sphere final : public Shape {
   }
 
   std::string toString() const override {
-    return str("Sphere[center=", center_, ", radius=", radius_, ", flip_normals=", flipNormals_, "]");
+    return str("Sphere[center=", center_, ", radius=", radius_, ", flip_normals=", flipNormals_ ? "true" : "false",
+               "]");
   }
 
  private:
