@@ -139,6 +139,12 @@ TEST(Scene, InterpolatesShadingNormalsAndUvs) {
   EXPECT_NEAR(si.n.z, 1.0f, 1e-6f);  // geometric normal from the winding
   EXPECT_FLOAT_EQ(si.uv.x, 0.25f);
   EXPECT_FLOAT_EQ(si.uv.y, 0.5f);
+  // The tangent follows dp/du (here +x rotated into the plane of the shading normal).
+  EXPECT_NEAR(dot(si.sh.s, si.sh.n), 0.0f, 1e-6f);
+  EXPECT_NEAR(dot(si.sh.t, si.sh.n), 0.0f, 1e-6f);
+  EXPECT_NEAR(si.sh.s.y, 0.0f, 1e-6f);
+  EXPECT_GT(si.sh.s.x, 0.5f);
+  EXPECT_NEAR(si.sh.t.y, 1.0f, 1e-6f);  // right-handed: s x t = n
   EXPECT_THROW(mesh->setGeometry({{0, 0, 0}}, {0, 1, 2}, {}, {}, Transform(), false, false), Error);
 }
 

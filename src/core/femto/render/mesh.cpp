@@ -1,6 +1,7 @@
 #include <femto/render/mesh.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include <femto/math/warp.h>
 
@@ -78,6 +79,23 @@ PositionSample TriangleMesh::samplePosition(const Point2f& u) const {
   return ps;
 }
 
+Frame TriangleMesh::shadingFrame(const Normal3f& ns, const Vec3f& dp1, const Vec3f& dp2, uint32_t primIndex) const {
+  if (uvs_.empty()) return Frame(ns);
+  // With texture coordinates the tangent follows dp/du (pbrt-v4 section
+  // 6.5.3; Mitsuba does the same), so anisotropic BSDFs and textures agree on
+  // an orientation; Gram-Schmidt makes it orthogonal to the shading normal.
+  const Point2f& uv0 = uvs_[indices_[3 * primIndex]];
+  Point2f duv1 = uvs_[indices_[3 * primIndex + 1]] - uv0, duv2 = uvs_[indices_[3 * primIndex + 2]] - uv0;
+  float det = duv1.x * duv2.y - duv1.y * duv2.x;
+  if (!(std::abs(det) > 1e-12f)) return Frame(ns);  // degenerate uv mapping
+  Vec3f dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
+  Vec3f s = dpdu - ns * dot(ns, dpdu);
+  float len = length(s);
+  if (!(len > 1e-12f * length(dpdu))) return Frame(ns);  // dp/du along the normal
+  s = s / len;
+  return Frame(s, cross(ns, s), ns);
+}
+
 void TriangleMesh::computeInteraction(const Ray& ray, float t, uint32_t primIndex, const Point2f& uv,
                                       SurfaceInteraction& si) const {
   uint32_t i0 = indices_[3 * primIndex], i1 = indices_[3 * primIndex + 1], i2 = indices_[3 * primIndex + 2];
@@ -99,7 +117,7 @@ void TriangleMesh::computeInteraction(const Ray& ray, float t, uint32_t primInde
     float len = length(interp);
     if (len > 0.0f) ns = flipNormals_ ? -(interp / len) : interp / len;
   }
-  si.sh = Frame(ns);
+  si.sh = shadingFrame(ns, p1 - p0, p2 - p0, primIndex);
   si.uv = uvs_.empty() ? Point2f(b1, b2) : uvs_[i0] * b0 + uvs_[i1] * b1 + uvs_[i2] * b2;
   si.primIndex = primIndex;
 }

@@ -37,6 +37,9 @@ class TriangleMesh : public Shape {
   size_t vertexCount() const { return positions_.size(); }
 
  private:
+  /// Shading frame around `ns`: tangent along dp/du when the mesh has uvs.
+  Frame shadingFrame(const Normal3f& ns, const Vec3f& dp1, const Vec3f& dp2, uint32_t primIndex) const;
+
   std::vector<Point3f> positions_;
   std::vector<uint32_t> indices_;
   std::vector<Normal3f> normals_;
