@@ -1,0 +1,43 @@
+#pragma once
+// Transient (time-resolved) integrators report every contribution of a camera
+// sample together with the optical path length (OPL, see time_grid.h) at which
+// it reaches the sensor. The core's render loop routes those contributions to
+// a transient film (binned in time) or, for a steady film, just sums them, so
+// the same integrator renders both.
+#include <femto/math/ray.h>
+#include <femto/render/integrator.h>
+#include <femto/render/spectrum.h>
+#include <femto/render/time_grid.h>
+
+namespace femto {
+
+class Scene;
+class Sampler;
+
+/// Receives the contributions of one camera sample (one film position).
+class RadianceRecorder {
+ public:
+  virtual ~RadianceRecorder() = default;
+  /// Radiance `value` arriving at optical path length `opl`.
+  virtual void add(double opl, const Color3f& value) = 0;
+  /// Radiance whose total is `value`, spread uniformly over [opl0, opl1]
+  /// (photon-beam estimates cover an interval; opl0 == opl1 behaves like add()).
+  virtual void addInterval(double opl0, double opl1, const Color3f& value) = 0;
+  /// Contributions at OPL >= horizon() cannot reach the film's window: an
+  /// integrator may stop a path once its OPL passes it (Infinity for steady films).
+  virtual double horizon() const = 0;
+  /// The film's time axis (bins == 0 for steady films).
+  virtual const TimeGrid& timeGrid() const = 0;
+};
+
+class TransientIntegrator : public Integrator {
+ public:
+  /// Trace one camera sample along `ray` (OPL 0 at the sensor) and report its
+  /// contributions to `recorder`.
+  virtual void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const = 0;
+  /// Drives the film: transient films get a time-binned volume (streamed),
+  /// steady films the ordinary image.
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override;
+};
+
+}  // namespace femto
