@@ -88,3 +88,15 @@ TEST(LoaderPlugins, LoadsASharedSceneWithIncludes) {
   EXPECT_GE(scene->shapes().size(), 6u);
   EXPECT_EQ(scene->emitters().size(), 1u);  // the area emitter declared at the top belongs to its shape
 }
+
+TEST(LoaderPlugins, UnknownPluginWithoutCloseMatchNamesTheSearchPath) {
+  try {
+    femto::loadObjectFromString("<bsdf type=\"zzzqqq\"/>", ".", {}, "test.xml");
+    FAIL() << "expected an error";
+  } catch (const femto::Error& e) {
+    std::string message = e.what();
+    EXPECT_NE(message.find("test.xml:1: unknown <bsdf> plugin \"zzzqqq\" (no zzzqqq.so in "), std::string::npos) << message;
+    for (const auto& dir : femto::PluginManager::instance().searchPath())
+      EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
+  }
+}

@@ -10,6 +10,12 @@
 namespace femto::xml {
 namespace {
 
+std::string searchPathList(const PluginManager& manager) {
+  std::string out;
+  for (const auto& dir : manager.searchPath()) out += (out.empty() ? "" : ", ") + dir.string();
+  return out.empty() ? std::string("an empty plugin search path") : out;
+}
+
 class PluginFactory final : public ObjectFactory {
  public:
   ObjectRef create(ObjectKind kind, const Properties& props) override {
@@ -22,8 +28,13 @@ class PluginFactory final : public ObjectFactory {
       // Say "unknown plugin" in scene words when no such library exists; keep
       // PluginManager's sentence for libraries that exist but fail to load.
       auto available = manager.availableNames();
-      if (std::find(available.begin(), available.end(), name) == available.end())
-        throw Error(str("unknown <", kindTag(kind), "> plugin \"", name, "\"", didYouMean(name, available)));
+      if (std::find(available.begin(), available.end(), name) == available.end()) {
+        // A near miss is most likely a typo; otherwise the user may have
+        // forgotten `-p DIR`, so say where we looked.
+        std::string hint = didYouMean(name, available);
+        if (hint.empty()) hint = " (no " + pluginFileName(name) + " in " + searchPathList(manager) + ")";
+        throw Error(str("unknown <", kindTag(kind), "> plugin \"", name, "\"", hint));
+      }
       throw;
     }
     // PluginManager reports plugins of another kind and loading failures.
