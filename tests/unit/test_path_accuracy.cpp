@@ -13,17 +13,12 @@
 #include <femto/render/scene.h>
 #include <femto/xml/loader.h>
 
+#include "li_estimate.h"
+
 using namespace femto;
+using namespace femto::test;
 
 namespace {
-
-std::string rgb(const Color3f& c) { return str(c.r, ", ", c.g, ", ", c.b); }
-
-std::shared_ptr<Scene> loadStrict(const std::string& xml) {
-  LoadOptions options;
-  options.strict = true;
-  return loadSceneFromString(xml, std::filesystem::temp_directory_path(), options, "<accuracy test>");
-}
 
 /// White furnace: a closed unit sphere whose inside is diffuse with
 /// reflectance rho and emits Le everywhere. Every path vertex sees emission
@@ -53,64 +48,6 @@ Color3f furnaceRadiance(const Color3f& rho, const Color3f& Le, int maxDepth) {
   for (int c = 0; c < 3; ++c)
     L[c] = maxDepth < 0 ? Le[c] / (1.0f - rho[c]) : Le[c] * (1.0f - std::pow(rho[c], float(maxDepth))) / (1.0f - rho[c]);
   return L;
-}
-
-struct Estimate {
-  Color3f mean, standardError;
-};
-
-/// Sample mean and its standard error, per channel, from running sums.
-class MeanAccumulator {
- public:
-  void add(const Color3f& v) {
-    ++n_;
-    for (int c = 0; c < 3; ++c) {
-      sum_[c] += v[c];
-      sumSq_[c] += double(v[c]) * v[c];
-    }
-  }
-  Estimate estimate() const {
-    Estimate e;
-    for (int c = 0; c < 3; ++c) {
-      double mean = sum_[c] / n_;
-      double variance = std::max(0.0, (sumSq_[c] / n_ - mean * mean) * n_ / (n_ - 1));
-      e.mean[c] = float(mean);
-      e.standardError[c] = float(std::sqrt(variance / n_));
-    }
-    return e;
-  }
-
- private:
-  long n_ = 0;
-  double sum_[3] = {0, 0, 0}, sumSq_[3] = {0, 0, 0};
-};
-
-/// Mean and standard error of Li over `n` independent rays from `makeRay`.
-template <typename RayFn>
-Estimate estimateLi(const Scene& scene, int n, RayFn&& makeRay) {
-  auto integrator = dynamic_cast<const SamplingIntegrator*>(&scene.integrator());
-  EXPECT_NE(integrator, nullptr);
-  std::unique_ptr<Sampler> sampler = scene.sensor().sampler().clone();
-  PCG32 rng(17, 23);
-  MeanAccumulator acc;
-  for (int i = 0; i < n; ++i) {
-    sampler->startPixel(5, uint64_t(i));
-    Color3f L = integrator->Li(makeRay(rng), scene, *sampler);
-    EXPECT_TRUE(L.isValid()) << L;
-    acc.add(L);
-  }
-  return acc.estimate();
-}
-
-void expectWithinErrorBars(const Estimate& e, const Color3f& expected) {
-  for (int c = 0; c < 3; ++c) {
-    // 5 sigma, plus 2e-4 relative for zero- or near-zero-variance estimators:
-    // the core offsets spawned rays by RayEpsilon = 1e-4 (relative to scene
-    // scale), which perturbs the geometry, and so the estimate, at that level.
-    float tolerance = 5.0f * e.standardError[c] + 2e-4f * expected[c];
-    EXPECT_NEAR(e.mean[c], expected[c], tolerance)
-        << "channel " << c << ": standard error " << e.standardError[c];
-  }
 }
 
 /// Rays from random points well inside the unit sphere in uniform directions:

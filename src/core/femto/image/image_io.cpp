@@ -83,10 +83,26 @@ void writePNG(const std::filesystem::path& path, const Bitmap& image, float expo
   });
 }
 
+float srgbToLinear(float v) {
+  if (!(v > 0.0f)) return 0.0f;
+  if (v >= 1.0f) return 1.0f;
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
 Bitmap readImage(const std::filesystem::path& path) {
+  ImageFileInfo info;
+  return readImage(path, info);
+}
+
+Bitmap readImage(const std::filesystem::path& path, ImageFileInfo& info) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw Error(str("cannot read image \"", path.string(), "\": ", OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
+  info.bitsPerSample = int(spec.format.size()) * 8;
+  bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
+  std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+  bool declaredLinear = colorSpace == "Linear" || colorSpace == "linear" || colorSpace == "lin_srgb";
+  info.srgbEncoded = integer && !declaredLinear;
   Bitmap image(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data.data()))
     throw Error(str("cannot read image \"", path.string(), "\": ", in->geterror()));

@@ -27,6 +27,16 @@ void writePNG(const std::filesystem::path& path, const Bitmap& image, float expo
 /// 8-bit sRGB inputs are returned as stored values (no linearisation).
 Bitmap readImage(const std::filesystem::path& path);
 
+/// How a file stored its values (what texture plugins need to decode them).
+struct ImageFileInfo {
+  /// Integer samples (8- or 16-bit: PNG, JPEG, ...) that carry sRGB gamma,
+  /// i.e. the file does not declare itself linear. Float formats never do.
+  bool srgbEncoded = false;
+  int bitsPerSample = 32;
+};
+/// readImage that also reports how the file stored its values.
+Bitmap readImage(const std::filesystem::path& path, ImageFileInfo& info);
+
 /// Write `path` atomically: `writer` gets a temporary path in the same
 /// directory; on success it is renamed onto `path`, on failure removed.
 template <typename Writer>
@@ -34,6 +44,8 @@ void writeAtomically(const std::filesystem::path& path, Writer&& writer);
 
 /// sRGB transfer function (IEC 61966-2-1) for one linear value in [0, 1].
 float linearToSRGB(float v);
+/// Its inverse: an sRGB-encoded value in [0, 1] to linear.
+float srgbToLinear(float v);
 
 }  // namespace femto
 

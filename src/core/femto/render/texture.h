@@ -30,6 +30,22 @@ class ConstantTexture final : public Texture {
   Color3f value_;
 };
 
+/// Where a 2D texture looks up a surface point: uv' = to_uv(uv). Reads
+/// Mitsuba 3's `to_uv` transform or Mitsuba 0.6's `uscale`, `vscale`,
+/// `uoffset`, `voffset` (uv' = uv * scale + offset; the loader's camelCase
+/// upgrade leaves these names unchanged), not both.
+class UvMapping {
+ public:
+  UvMapping() = default;
+  explicit UvMapping(const Properties& props);
+  Point2f operator()(const Point2f& uv) const;
+  bool isIdentity() const { return toUv_.isIdentity(); }
+  const Transform& transform() const { return toUv_; }
+
+ private:
+  Transform toUv_;
+};
+
 /// Parameter `name` as a texture: a nested/referenced <texture> object under
 /// that name, or an <rgb>/<spectrum>/<float> value, or `def` when absent.
 std::shared_ptr<Texture> textureOrColor(const Properties& props, const std::string& name, const Color3f& def);
