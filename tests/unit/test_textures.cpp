@@ -8,6 +8,7 @@
 #include <femto/image/image_io.h>
 #include <femto/image/texel_lookup.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/shape.h>
 #include <femto/render/texture.h>
 
 #include "li_estimate.h"
@@ -144,6 +145,19 @@ TEST_F(BitmapTextureTest, EightBitImagesAreDecodedFromSRGBUnlessRaw) {
     // And that is the original value up to 8-bit quantisation.
     expectColorNear(decoded->eval(si), Color3f(linear[i]), 5e-3f);
   }
+  // Mitsuba 0.6's gamma overrides the file: 1 keeps stored values, 2 squares them.
+  for (float gamma : {1.0f, 2.0f}) {
+    Properties props("bitmap");
+    props.setString("filename", png.string());
+    props.setString("filter_type", "nearest");
+    props.setFloat("gamma", gamma);
+    auto texture = makePlugin<Texture>(ObjectKind::Texture, props);
+    for (size_t i = 0; i < linear.size(); ++i) {
+      float stored = std::round(linearToSRGB(linear[i]) * 255.0f) / 255.0f;
+      expectColorNear(texture->eval(atUv((float(i) + 0.5f) / float(linear.size()), 0.5f)),
+                      Color3f(std::pow(stored, gamma)), 1e-6f);
+    }
+  }
   // Float images are linear already: raw changes nothing.
   SurfaceInteraction centre = atUv(0.5f, 0.25f);
   expectColorNear(makeBitmap(exr_, "", "", 0)->eval(centre), makeBitmap(exr_, "", "", 1)->eval(centre));
@@ -248,4 +262,35 @@ TEST(CheckerboardTexture, DiffusePlaneUnderAConstantSkyShowsBothColours) {
     SCOPED_TRACE(str("point ", target));
     expectWithinErrorBars(estimateLi(*scene, 4000, [&](PCG32&) { return Ray(eye, normalize(target - eye)); }), rho * L);
   }
+}
+
+TEST_F(BitmapTextureTest, MitsubaLegacySceneLoadsStrictlyWithUpgradedNames) {
+  // Mitsuba 0.6 spellings: the loader turns wrapModeU into wrap_mode_u and
+  // filterType into filter_type, and keeps uscale as it is.
+  LoadOptions options;
+  options.strict = true;
+  auto scene = loadSceneFromString(R"(<scene version="0.6.0">
+  <shape type="rectangle">
+    <bsdf type="diffuse">
+      <texture type="bitmap" name="reflectance">
+        <string name="filename" value="texels.exr"/>
+        <float name="uscale" value="2"/>
+        <string name="wrapModeU" value="mirror"/>
+        <string name="wrapModeV" value="clamp"/>
+        <string name="filterType" value="nearest"/>
+      </texture>
+    </bsdf>
+  </shape>
+</scene>)", dir_, options, "<legacy texture test>");
+  const BSDF* bsdf = scene->shapes().at(0)->bsdf();
+  ASSERT_NE(bsdf, nullptr);
+  auto reflectanceAt = [&](float u, float v) {
+    SurfaceInteraction si = atUv(u, v);
+    si.wi = Vec3f(0, 0, 1);
+    return bsdf->eval(si, Vec3f(0, 0, 1)) * Pi;
+  };
+  // u = 0.55 -> 1.1 (column 3): mirrored to column 2 (repeat would give 0).
+  expectColorNear(reflectanceAt(0.55f, 0.25f), texelOf(image_, 2, 0), 1e-5f);
+  // v = 1.3 is clamped to the bottom row.
+  expectColorNear(reflectanceAt(0.1f, 1.3f), texelOf(image_, 0, 1), 1e-5f);
 }
