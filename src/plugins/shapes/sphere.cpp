@@ -24,19 +24,10 @@ class Sphere final : public Shape {
     flipNormals_ = props.getBool("flip_normals", false);
     if (!(radius > 0.0f)) props.raise("radius", str("must be positive, got ", radius));
 
-    // A sphere stays a sphere only under a similarity: the columns of the
-    // linear part must have equal lengths (and be orthogonal).
-    Vec3f axes[3] = {toWorld.vector({1, 0, 0}), toWorld.vector({0, 1, 0}), toWorld.vector({0, 0, 1})};
-    float scale = length(axes[0]);
-    for (int i = 0; i < 3; ++i) {
-      if (std::abs(length(axes[i]) - scale) > 1e-4f * scale || !(scale > 0.0f))
-        props.raise("to_world", "a sphere's transform may only scale uniformly");
-      axes[i] = axes[i] / scale;
-    }
-    if (std::abs(dot(axes[0], axes[1])) > 1e-4f || std::abs(dot(axes[0], axes[2])) > 1e-4f ||
-        std::abs(dot(axes[1], axes[2])) > 1e-4f)
-      props.raise("to_world", "a sphere's transform may not shear");
-    frame_ = Frame(axes[0], axes[1], axes[2]);
+    // A sphere stays a sphere only under a similarity.
+    float scale = toWorld.similarityScale();
+    if (!(scale > 0.0f)) props.raise("to_world", "a sphere's transform may only rotate, translate and scale uniformly");
+    frame_ = Frame(toWorld.vector({1, 0, 0}) / scale, toWorld.vector({0, 1, 0}) / scale, toWorld.vector({0, 0, 1}) / scale);
     center_ = toWorld.point(center);
     radius_ = radius * scale;
   }

@@ -111,6 +111,20 @@ bool Transform::flipsHandedness() const {
   return det < 0.0;
 }
 
+float Transform::similarityScale() const {
+  Vec3f axes[3] = {vector({1, 0, 0}), vector({0, 1, 0}), vector({0, 0, 1})};
+  float scale = length(axes[0]);
+  if (!(scale > 0.0f)) return 0.0f;
+  for (auto& axis : axes) {
+    if (std::abs(length(axis) - scale) > 1e-4f * scale) return 0.0f;
+    axis = axis / scale;
+  }
+  if (std::abs(dot(axes[0], axes[1])) > 1e-4f || std::abs(dot(axes[0], axes[2])) > 1e-4f ||
+      std::abs(dot(axes[1], axes[2])) > 1e-4f)
+    return 0.0f;
+  return scale;
+}
+
 Transform Transform::translate(const Vec3f& t) {
   Matrix4f m = Matrix4f::identity(), inv = Matrix4f::identity();
   for (int i = 0; i < 3; ++i) {

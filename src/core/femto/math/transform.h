@@ -44,6 +44,10 @@ class Transform {
   bool isIdentity() const { return m_ == Matrix4f::identity(); }
   /// True when the transform flips handedness (negative determinant of the 3x3 part).
   bool flipsHandedness() const;
+  /// The scale factor s when the linear part is s times an orthogonal matrix
+  /// (rotation, reflection, uniform scale: shapes keep their form), else 0.
+  /// Tolerance: relative 1e-4 on lengths and cosines.
+  float similarityScale() const;
 
   static Transform translate(const Vec3f& t);
   static Transform scale(const Vec3f& s);

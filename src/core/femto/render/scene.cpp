@@ -4,6 +4,7 @@
 
 #include <femto/render/default_child.h>
 #include <femto/render/detail/embree_accel.h>
+#include <femto/render/shape_group.h>
 
 namespace femto {
 
@@ -22,7 +23,9 @@ Scene::Scene(const Properties& props) {
   sensor_ = nestedOrDefault<Sensor>(props, ObjectKind::Sensor, "perspective");
   integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
 
-  for (const auto& shape : shapes_) bbox_.expand(shape->bbox());
+  // A shapegroup is only seen through its instances.
+  for (const auto& shape : shapes_)
+    if (!dynamic_cast<const ShapeGroup*>(shape.get())) bbox_.expand(shape->bbox());
   accel_ = std::make_unique<Accel>(shapes_);
 
   // Emitters are picked with probability proportional to their sampling weight.
@@ -42,6 +45,8 @@ Scene::Scene(const Properties& props) {
 Scene::~Scene() = default;
 
 bool Scene::rayIntersect(const Ray& ray, SurfaceInteraction& si) const { return accel_->intersect(ray, si); }
+
+float Scene::rayHitDistance(const Ray& ray) const { return accel_->hitDistance(ray); }
 
 bool Scene::rayTest(const Ray& ray) const { return accel_->occluded(ray); }
 

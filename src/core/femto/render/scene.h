@@ -25,6 +25,9 @@ class Scene : public Object {
 
   /// Nearest surface hit in (ray.tmin, ray.tmax); fills `si` (including wi and shape).
   bool rayIntersect(const Ray& ray, SurfaceInteraction& si) const;
+  /// Distance to the nearest hit in (ray.tmin, ray.tmax), Infinity when none;
+  /// computes no interaction (for callers that only need t, and benchmarks).
+  float rayHitDistance(const Ray& ray) const;
   /// Is anything hit in (ray.tmin, ray.tmax)? (shadow rays)
   bool rayTest(const Ray& ray) const;
 

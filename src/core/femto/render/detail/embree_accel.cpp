@@ -1,11 +1,15 @@
 // Embree 3 scene: the only file of femto that includes Embree.
 #include <femto/render/detail/embree_accel.h>
 
+#include <map>
+#include <type_traits>
+
 #include <embree3/rtcore.h>
 
 #include <femto/core/log.h>
 #include <femto/render/mesh.h>
 #include <femto/render/shape.h>
+#include <femto/render/shape_group.h>
 
 namespace femto::detail {
 namespace {
@@ -62,57 +66,125 @@ RTCRay toEmbree(const Ray& ray) {
   return r;
 }
 
+/// A geometry id of the top-level Embree scene: a shape, or an instance whose
+/// hits carry the geometry id of a shape of its group.
+struct TopLevelEntry {
+  const Shape* shape = nullptr;
+  const ShapeInstance* instance = nullptr;
+  const std::vector<const Shape*>* groupShapes = nullptr;  // the instanced group's shapes by geometry id
+};
+
+/// A shapegroup's own Embree scene, shared by all its instances.
+struct GroupScene {
+  RTCScene scene = nullptr;
+  std::vector<const Shape*> byGeomId;
+};
+
+RTCGeometry newShapeGeometry(RTCDevice device, const Shape& shape) {
+  RTCGeometry geom;
+  if (const TriangleMesh* mesh = shape.asMesh()) {
+    geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree-owned buffers: Embree pads them for its SIMD loads, which the
+    // mesh's own vectors are not.
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), mesh->vertexCount()));
+    for (const Point3f& p : mesh->positions()) *v++ = p.x, *v++ = p.y, *v++ = p.z;
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(uint32_t), mesh->triangleCount()));
+    std::copy(mesh->indices().begin(), mesh->indices().end(), idx);
+  } else {
+    geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, const_cast<Shape*>(&shape));
+    rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, userIntersect);
+    rtcSetGeometryOccludedFunction(geom, userOccluded);
+  }
+  return geom;
+}
+
+/// Commit `geom`, attach it to `scene` and return its id (the scene keeps the geometry alive).
+unsigned attach(RTCScene scene, RTCGeometry geom) {
+  rtcCommitGeometry(geom);
+  unsigned id = rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  return id;
+}
+
+RTCScene newScene(RTCDevice device) {
+  RTCScene scene = rtcNewScene(device);
+  // Robust mode: exact edge tests, so rays through shared mesh edges never slip through.
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  return scene;
+}
+
+template <typename T>
+void store(std::vector<T>& table, unsigned id, std::type_identity_t<T> value) {
+  if (table.size() <= id) table.resize(id + 1);
+  table[id] = value;
+}
+
 }  // namespace
 
 struct EmbreeAccel::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::vector<const Shape*> byGeomId;
+  std::vector<TopLevelEntry> byGeomId;
+  std::map<const ShapeGroup*, GroupScene> groups;
+
+  /// The group's Embree scene, built on first use.
+  const GroupScene& groupScene(const ShapeGroup& group) {
+    auto [it, inserted] = groups.try_emplace(&group);
+    GroupScene& gs = it->second;
+    if (inserted) {
+      gs.scene = newScene(device);
+      for (const auto& shape : group.shapes())
+        store(gs.byGeomId, attach(gs.scene, newShapeGeometry(device, *shape)), shape.get());
+      rtcCommitScene(gs.scene);
+    }
+    return gs;
+  }
 };
 
 EmbreeAccel::EmbreeAccel(const std::vector<std::shared_ptr<Shape>>& shapes) : impl_(std::make_unique<Impl>()) {
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error(str("cannot create the Embree device (error ", int(rtcGetDeviceError(nullptr)), ")"));
   rtcSetDeviceErrorFunction(impl_->device, deviceError, nullptr);
-  impl_->scene = rtcNewScene(impl_->device);
-  // Robust mode: exact edge tests, so rays through shared mesh edges never slip through.
-  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  impl_->scene = newScene(impl_->device);
 
   for (const auto& shape : shapes) {
+    if (dynamic_cast<const ShapeGroup*>(shape.get())) continue;  // seen only through its instances
+    TopLevelEntry entry{shape.get()};
     RTCGeometry geom;
-    if (const TriangleMesh* mesh = shape->asMesh()) {
-      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      // Embree-owned buffers: Embree pads them for its SIMD loads, which the
-      // mesh's own vectors are not.
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            3 * sizeof(float), mesh->vertexCount()));
-      for (const Point3f& p : mesh->positions()) *v++ = p.x, *v++ = p.y, *v++ = p.z;
-      auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(uint32_t), mesh->triangleCount()));
-      std::copy(mesh->indices().begin(), mesh->indices().end(), idx);
+    if (const auto* instance = dynamic_cast<const ShapeInstance*>(shape.get())) {
+      const GroupScene& group = impl_->groupScene(instance->group());
+      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(geom, group.scene);
+      const Matrix4f& m = instance->toWorld().matrix();
+      float rows[12];  // the affine 3x4 part, row-major
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) rows[4 * r + c] = m.m[r][c];
+      rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, rows);
+      entry.instance = instance;
+      entry.groupShapes = &group.byGeomId;
     } else {
-      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
-      rtcSetGeometryUserPrimitiveCount(geom, 1);
-      rtcSetGeometryUserData(geom, const_cast<Shape*>(shape.get()));
-      rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
-      rtcSetGeometryIntersectFunction(geom, userIntersect);
-      rtcSetGeometryOccludedFunction(geom, userOccluded);
+      geom = newShapeGeometry(impl_->device, *shape);
     }
-    rtcCommitGeometry(geom);
-    unsigned id = rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
-    if (impl_->byGeomId.size() <= id) impl_->byGeomId.resize(id + 1, nullptr);
-    impl_->byGeomId[id] = shape.get();
+    store(impl_->byGeomId, attach(impl_->scene, geom), entry);
   }
   rtcCommitScene(impl_->scene);
 }
 
 EmbreeAccel::~EmbreeAccel() {
   if (impl_->scene) rtcReleaseScene(impl_->scene);
+  for (auto& [group, gs] : impl_->groups) rtcReleaseScene(gs.scene);
   if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
-bool EmbreeAccel::intersect(const Ray& ray, SurfaceInteraction& si) const {
+namespace {
+
+/// rtcIntersect1 on `ray`; geomID is RTC_INVALID_GEOMETRY_ID on a miss.
+RTCRayHit traceNearest(RTCScene scene, const Ray& ray) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -120,16 +192,40 @@ bool EmbreeAccel::intersect(const Ray& ray, SurfaceInteraction& si) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(scene, &context, &rh);
+  return rh;
+}
+
+}  // namespace
+
+bool EmbreeAccel::intersect(const Ray& ray, SurfaceInteraction& si) const {
+  RTCRayHit rh = traceNearest(impl_->scene, ray);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-  const Shape* shape = impl_->byGeomId[rh.hit.geomID];
-  shape->computeInteraction(ray, rh.ray.tfar, rh.hit.primID, Point2f(rh.hit.u, rh.hit.v), si);
-  si.t = rh.ray.tfar;
+  float t = rh.ray.tfar;
+  Point2f uv(rh.hit.u, rh.hit.v);
+  const Shape* shape;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
+    shape = impl_->byGeomId[rh.hit.geomID].shape;
+    shape->computeInteraction(ray, t, rh.hit.primID, uv, si);
+  } else {
+    // Embree reports the instance as instID and the group's own geometry as
+    // geomID; t is shared because the ray direction is not renormalised.
+    const TopLevelEntry& entry = impl_->byGeomId[rh.hit.instID[0]];
+    shape = (*entry.groupShapes)[rh.hit.geomID];
+    shape->computeInteraction(entry.instance->toLocal().ray(ray), t, rh.hit.primID, uv, si);
+    entry.instance->interactionToWorld(si);
+  }
+  si.t = t;
   si.shape = shape;
   si.primIndex = rh.hit.primID;
   si.wi = si.toLocal(normalize(-ray.d));
   return true;
+}
+
+float EmbreeAccel::hitDistance(const Ray& ray) const {
+  RTCRayHit rh = traceNearest(impl_->scene, ray);
+  return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? Infinity : rh.ray.tfar;
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {

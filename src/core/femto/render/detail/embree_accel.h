@@ -18,7 +18,9 @@ namespace femto::detail {
 class EmbreeAccel {
  public:
   /// Triangle meshes become Embree triangle geometry (buffers copied); every
-  /// other shape a user geometry calling Shape::intersect. `shapes` must outlive this.
+  /// other shape a user geometry calling Shape::intersect. A ShapeGroup
+  /// becomes its own Embree scene (built once, when first instanced) and each
+  /// ShapeInstance an Embree instance of it. `shapes` must outlive this.
   explicit EmbreeAccel(const std::vector<std::shared_ptr<Shape>>& shapes);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
@@ -27,6 +29,8 @@ class EmbreeAccel {
   /// Nearest hit in (ray.tmin, ray.tmax); fills t, shape, primIndex and
   /// everything computeInteraction provides, plus wi.
   bool intersect(const Ray& ray, SurfaceInteraction& si) const;
+  /// Nearest hit distance, Infinity when none (no interaction computed).
+  float hitDistance(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
 
  private:
