@@ -1,0 +1,78 @@
+// dielectric: a smooth boundary between two dielectrics (glass, water),
+// reflecting and refracting in the two delta directions given by the law of
+// reflection and Snell's law, in the proportions given by the unpolarised
+// Fresnel equations. sample() picks one of the two by the Fresnel
+// reflectance, so a sample's weight is just the reflectance/transmittance
+// factor (Mitsuba 3's `dielectric`; pbrt-v4 sec. 9.5).
+//
+// Radiance crossing into a denser medium is compressed into a narrower solid
+// angle: in Radiance transport the transmitted weight carries 1/eta_it^2
+// (Veach 1997, sec. 5.2, "non-symmetric scattering due to refraction"); in
+// Importance transport it does not. BSDFSample::eta is eta_it, the index
+// ratio (other side over incident side) of the crossing.
+//
+// | name                   | type            | default | meaning                                        | unit |
+// |------------------------|-----------------|---------|------------------------------------------------|------|
+// | int_ior                | float or string | "bk7"   | interior index of refraction (or material name) | -    |
+// | ext_ior                | float or string | "air"   | exterior index of refraction (or material name) | -    |
+// | specular_reflectance   | rgb or texture  | 1       | scale of the reflected part (not physical)     | -    |
+// | specular_transmittance | rgb or texture  | 1       | scale of the transmitted part (not physical)   | -    |
+#include <femto/core/plugin.h>
+#include <femto/render/bsdf.h>
+#include <femto/render/fresnel.h>
+#include <femto/render/ior.h>
+#include <femto/render/texture.h>
+
+namespace femto {
+
+class DielectricBSDF final : public BSDF {
+ public:
+  explicit DielectricBSDF(const Properties& props)
+      : intIOR_(iorFromProperties(props, "int_ior", *lookupIOR("bk7"))),
+        extIOR_(iorFromProperties(props, "ext_ior", *lookupIOR("air"))),
+        eta_(intIOR_ / extIOR_),
+        reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
+        transmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {}
+
+  uint32_t flags() const override { return BSDFFlags::DeltaReflection | BSDFFlags::DeltaTransmission; }
+
+  Color3f sample(const SurfaceInteraction& si, float u1, const Point2f&, BSDFSample& bs,
+                 TransportMode mode) const override {
+    bs = BSDFSample();
+    const float cosThetaI = Frame::cosTheta(si.wi);
+    float cosThetaT;
+    const float r = fresnelDielectric(cosThetaI, eta_, cosThetaT);
+    if (u1 < r) {  // reflect, with probability R: weight R / R
+      bs.wo = reflect(si.wi, Vec3f(0, 0, 1));
+      bs.pdf = r;
+      bs.sampledFlags = BSDFFlags::DeltaReflection;
+      return reflectance_->eval(si);
+    }
+    // Refract, with probability 1 - R: weight (1 - R) / (1 - R), times the radiance scaling.
+    const float etaIT = cosThetaI >= 0.0f ? eta_ : 1.0f / eta_;
+    bs.wo = refract(si.wi, cosThetaT, eta_);
+    bs.pdf = 1.0f - r;
+    bs.eta = etaIT;
+    bs.sampledFlags = BSDFFlags::DeltaTransmission;
+    Color3f weight = transmittance_->eval(si);
+    if (mode == TransportMode::Radiance) weight *= 1.0f / (etaIT * etaIT);
+    return weight;
+  }
+
+  // Both components are delta: nothing to evaluate for a given pair of directions.
+  Color3f eval(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return Color3f(0.0f); }
+  float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
+
+  std::string toString() const override {
+    return str("DielectricBSDF[int_ior=", intIOR_, ", ext_ior=", extIOR_, ", specular_reflectance=",
+               reflectance_->toString(), ", specular_transmittance=", transmittance_->toString(), "]");
+  }
+
+ private:
+  float intIOR_, extIOR_, eta_;
+  std::shared_ptr<Texture> reflectance_, transmittance_;
+};
+
+}  // namespace femto
+
+FEMTO_EXPORT_PLUGIN(femto::DielectricBSDF, BSDF, "dielectric", "Smooth dielectric boundary (glass, water)")
