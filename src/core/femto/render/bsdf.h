@@ -30,7 +30,7 @@ enum : uint32_t {
 
 struct BSDFSample {
   Vec3f wo;               // sampled direction, local frame
-  float pdf = 0.0f;       // solid-angle density (1 for delta components)
+  float pdf = 0.0f;       // solid-angle density; for a delta component the probability of choosing it
   float eta = 1.0f;       // relative IOR crossed (1 unless refracted)
   uint32_t sampledFlags = 0;
 };
