@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -47,23 +49,44 @@ struct Options {
   std::vector<int> threads = {1, 2};
 };
 
+std::string fixed(double v, int digits = 2) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// Median wall time of `runs` calls of `work` inside an arena of `threads` threads.
-double medianSeconds(int runs, int threads, const std::function<void()>& work) {
+/// Median wall time and median process CPU time (all threads) of one run.
+struct Timing {
+  double wall = 0.0, cpu = 0.0;
+};
+
+double processCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+/// Median times of `runs` calls of `work` inside an arena of `threads`
+/// threads. CPU time is reported too: on a machine shared with other jobs the
+/// wall time depends on the load, the CPU time per ray much less.
+Timing medianTimes(int runs, int threads, const std::function<void()>& work) {
   tbb::task_arena arena(threads);
-  std::vector<double> times;
+  std::vector<double> walls, cpus;
   arena.execute(work);  // warm-up (page faults, lazy TBB workers)
   for (int i = 0; i < runs; ++i) {
+    double cpu0 = processCpuSeconds();
     auto start = std::chrono::steady_clock::now();
     arena.execute(work);
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    cpus.push_back(processCpuSeconds() - cpu0);
   }
-  return median(times);
+  return {median(walls), median(cpus)};
 }
 
 /// Run `perRay(i)` for every ray index in parallel (grain: 1024 rays).
@@ -196,30 +219,37 @@ void benchScene(const std::string& label, const Scene& scene, const Options& opt
   RawEmbree robust(scene, true), plain(scene, false);
   std::vector<float> sink(rays.size());  // results are stored so nothing is optimised away
   double mrays = double(rays.size()) * 1e-6;
+  double pathOneThread = 0.0, siOneThread = 0.0;
   for (int threads : opt.threads) {
-    double tSi = medianSeconds(opt.runs, threads, [&] {
+    Timing si = medianTimes(opt.runs, threads, [&] {
       forEachRay(rays.size(), [&](size_t i) {
-        SurfaceInteraction si;
-        sink[i] = scene.rayIntersect(rays[i], si) ? si.t + si.sh.n.x : -1.0f;
+        SurfaceInteraction its;
+        sink[i] = scene.rayIntersect(rays[i], its) ? its.t + its.sh.n.x : -1.0f;
       });
     });
-    double tHit = medianSeconds(opt.runs, threads, [&] {
+    Timing hit = medianTimes(opt.runs, threads, [&] {
       forEachRay(rays.size(), [&](size_t i) { sink[i] = scene.rayHitDistance(rays[i]); });
     });
-    double tRobust = medianSeconds(opt.runs, threads, [&] {
+    Timing embree = medianTimes(opt.runs, threads, [&] {
       forEachRay(rays.size(), [&](size_t i) { sink[i] = robust.distance(rays[i]); });
     });
-    double tPlain = medianSeconds(opt.runs, threads, [&] {
+    Timing embreeDefault = medianTimes(opt.runs, threads, [&] {
       forEachRay(rays.size(), [&](size_t i) { sink[i] = plain.distance(rays[i]); });
     });
     RenderOptions ro;
     ro.threads = threads;
     ro.progress = false;
     uint64_t samples = 0;
-    double tPath = medianSeconds(opt.runs, threads, [&] { samples = scene.integrator().render(scene, ro).samples; });
-    std::cout << "| " << label << " | " << threads << " | " << mrays / tSi << " | " << mrays / tHit << " | "
-              << mrays / tRobust << " | " << mrays / tPlain << " | " << 100.0 * tRobust / tSi << " % | "
-              << double(samples) / tPath * 1e-6 << " |" << std::endl;
+    Timing path = medianTimes(opt.runs, threads, [&] { samples = scene.integrator().render(scene, ro).samples; });
+    double pathRate = double(samples) / path.wall * 1e-6, siRate = mrays / si.wall;
+    if (threads == 1) pathOneThread = pathRate, siOneThread = siRate;
+    auto percent = [](double x) { return str(std::lround(100.0 * x), " %"); };
+    std::cout << "| " << label << " | " << threads << " | " << fixed(siRate) << " | " << fixed(mrays / hit.wall)
+              << " | " << fixed(mrays / embree.wall) << " | " << fixed(mrays / embreeDefault.wall) << " | "
+              << percent(embree.cpu / si.cpu) << " | " << percent(embree.cpu / hit.cpu) << " | " << fixed(pathRate, 3)
+              << " | "
+              << (threads == 1 ? std::string("-") : str(fixed(siRate / siOneThread), "x / ", fixed(pathRate / pathOneThread), "x"))
+              << " |" << std::endl;
   }
 }
 
@@ -257,8 +287,9 @@ int main(int argc, char** argv) {
               << opt.pathResolution << "x" << opt.pathResolution << " pixels, " << opt.pathSpp
               << " spp; median of " << opt.runs << " runs.\n\n"
               << "| scene | threads | femto rayIntersect (Mrays/s) | femto rayHitDistance (Mrays/s) | "
-                 "Embree robust (Mrays/s) | Embree default (Mrays/s) | femto / Embree robust | path (Msamples/s) |\n"
-              << "|---|---|---|---|---|---|---|---|\n";
+                 "Embree robust (Mrays/s) | Embree default (Mrays/s) | rayIntersect / Embree (CPU time) | "
+                 "rayHitDistance / Embree (CPU time) | path (Msamples/s) | speed-up rayIntersect / path |\n"
+              << "|---|---|---|---|---|---|---|---|---|---|\n";
     LoadOptions lo;
     lo.resolution = Point2i(opt.pathResolution, opt.pathResolution);
     lo.sampleCount = opt.pathSpp;
