@@ -219,7 +219,7 @@ void benchScene(const std::string& label, const Scene& scene, const Options& opt
   RawEmbree robust(scene, true), plain(scene, false);
   std::vector<float> sink(rays.size());  // results are stored so nothing is optimised away
   double mrays = double(rays.size()) * 1e-6;
-  double pathOneThread = 0.0, siOneThread = 0.0;
+  double pathOneThread = 0.0, siOneThread = 0.0, pathCpuOneThread = 0.0, siCpuOneThread = 0.0;
   for (int threads : opt.threads) {
     Timing si = medianTimes(opt.runs, threads, [&] {
       forEachRay(rays.size(), [&](size_t i) {
@@ -242,13 +242,20 @@ void benchScene(const std::string& label, const Scene& scene, const Options& opt
     uint64_t samples = 0;
     Timing path = medianTimes(opt.runs, threads, [&] { samples = scene.integrator().render(scene, ro).samples; });
     double pathRate = double(samples) / path.wall * 1e-6, siRate = mrays / si.wall;
-    if (threads == 1) pathOneThread = pathRate, siOneThread = siRate;
+    if (threads == 1) pathOneThread = pathRate, siOneThread = siRate, pathCpuOneThread = path.cpu, siCpuOneThread = si.cpu;
+    // Load-independent proxy of the speed-up on idle cores: n threads times
+    // the ratio of CPU time for the same work (1 when threads add no overhead
+    // per ray). Idle TBB workers spinning count against it.
+    auto proxy = [&](double cpuOne, double cpuN) { return fixed(threads * cpuOne / cpuN); };
     auto percent = [](double x) { return str(std::lround(100.0 * x), " %"); };
     std::cout << "| " << label << " | " << threads << " | " << fixed(siRate) << " | " << fixed(mrays / hit.wall)
               << " | " << fixed(mrays / embree.wall) << " | " << fixed(mrays / embreeDefault.wall) << " | "
               << percent(embree.cpu / si.cpu) << " | " << percent(embree.cpu / hit.cpu) << " | " << fixed(pathRate, 3)
               << " | "
               << (threads == 1 ? std::string("-") : str(fixed(siRate / siOneThread), "x / ", fixed(pathRate / pathOneThread), "x"))
+              << " | "
+              << (threads == 1 ? std::string("-")
+                               : str(proxy(siCpuOneThread, si.cpu), "x / ", proxy(pathCpuOneThread, path.cpu), "x"))
               << " |" << std::endl;
   }
 }
@@ -288,8 +295,9 @@ int main(int argc, char** argv) {
               << " spp; median of " << opt.runs << " runs.\n\n"
               << "| scene | threads | femto rayIntersect (Mrays/s) | femto rayHitDistance (Mrays/s) | "
                  "Embree robust (Mrays/s) | Embree default (Mrays/s) | rayIntersect / Embree (CPU time) | "
-                 "rayHitDistance / Embree (CPU time) | path (Msamples/s) | speed-up rayIntersect / path |\n"
-              << "|---|---|---|---|---|---|---|---|---|---|\n";
+                 "rayHitDistance / Embree (CPU time) | path (Msamples/s) | wall speed-up rayIntersect / path | "
+                 "CPU-time speed-up proxy rayIntersect / path |\n"
+              << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     LoadOptions lo;
     lo.resolution = Point2i(opt.pathResolution, opt.pathResolution);
     lo.sampleCount = opt.pathSpp;
