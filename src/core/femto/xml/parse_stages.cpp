@@ -7,6 +7,7 @@ ParsedScene parseTree(XmlNode root, const fs::path& sceneDir, const LoadOptions&
   ParsedScene parsed{std::move(root), ExpandResult{FileResolver(sceneDir), {}, {}}, {}};
   parsed.expanded = expandDirectives(parsed.root, sceneDir, options.defines);
   upgradeLegacyNames(parsed.root);
+  upgradePluginTypes(parsed.root);
   parsed.index = resolveReferences(parsed.root, parsed.expanded.aliases);
   return parsed;
 }

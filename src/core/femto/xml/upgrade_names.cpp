@@ -25,4 +25,16 @@ void upgradeLegacyNames(XmlNode& node) {
   for (auto& child : node.children) upgradeLegacyNames(child);
 }
 
+std::string upgradePluginType(std::string_view tag, const std::string& type) {
+  if (tag == "integrator" && (type == "volpath" || type == "volpath_simple" || type == "volpathmis"))
+    return "transient_path";
+  return type;
+}
+
+void upgradePluginTypes(XmlNode& node) {
+  for (auto& [key, value] : node.attributes)
+    if (key == "type") value = upgradePluginType(node.tag, value);
+  for (auto& child : node.children) upgradePluginTypes(child);
+}
+
 }  // namespace femto::xml

@@ -17,4 +17,13 @@ std::string camelToSnake(std::string_view name);
 /// Nodes from Mitsuba 3 files keep their names.
 void upgradeLegacyNames(XmlNode& root);
 
+/// The femto plugin that renders scenes naming Mitsuba plugin `type` for an
+/// object with tag `tag`, or `type` itself. Mitsuba's volumetric path tracers
+/// ("volpath", 0.6's "volpath_simple", Mitsuba 3's "volpathmis") map to
+/// "transient_path", which also renders steady films. Both dialects.
+std::string upgradePluginType(std::string_view tag, const std::string& type);
+
+/// Rewrite the type="" attributes of every node with upgradePluginType.
+void upgradePluginTypes(XmlNode& root);
+
 }  // namespace femto::xml

@@ -1,0 +1,215 @@
+// transient_path in media: the OPL histogram of single scattering from a
+// point light against its closed form, scattering delays, a furnace filled
+// with a conservative medium, agreement with `path` without media, and
+// Mitsuba volpath scenes loading in strict mode.
+#include <gtest/gtest.h>
+
+#include <femto/math/pcg32.h>
+#include <femto/math/warp.h>
+
+#include "media_test_util.h"
+#include "plugin_util.h"
+#include "transient_test_util.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+const float kSigmaS = 0.6f, kSigmaA = 0.2f, kSigmaT = kSigmaS + kSigmaA;
+const Point3f kLight(0.8f, 0.0f, 1.0f);
+const float kIntensity = 2.0f;
+
+/// Camera at the origin inside an unbounded homogeneous medium lit by a point
+/// light; max_depth = 2 keeps only single scattering.
+std::shared_ptr<Scene> singleScatteringScene(const std::string& phaseParams = "") {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="2"/></integrator>
+  <medium id="m" type="homogeneous"><float name="sigma_s" value=")", kSigmaS, R"("/><float name="sigma_a" value=")",
+                             kSigmaA, R"("/><phase type="isotropic">)", phaseParams, R"(</phase></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
+</scene>)"));
+}
+
+/// Along the camera ray x(s) = s d, light arrives scattered at s after
+/// travelling l(s) = |x(s) - light|, so at OPL tau(s) = s + l(s) (eta = 1).
+/// Its radiance, per unit s, is sigma_s f_p I / l^2 exp(-sigma_t (s + l));
+/// per unit tau it is that divided by d tau / ds = 1 + d.(x - light) / l >= 0.
+/// The integral over a tau bin is the integral over the s interval that maps
+/// to it (tau is monotonic in s), computed here by Simpson's rule.
+struct SingleScattering {
+  Vec3f d;
+  double l(double s) const { return distance(Point3f(d * float(s)), kLight); }
+  double tau(double s) const { return s + l(s); }
+  double perUnitS(double s) const {
+    double ls = l(s);
+    return kSigmaS * Inv4Pi * kIntensity / (ls * ls) * std::exp(-kSigmaT * (s + ls));
+  }
+  /// s with tau(s) = t (bisection; tau increases with s).
+  double sOfTau(double t) const {
+    double lo = 0.0, hi = 1.0;
+    while (tau(hi) < t) hi *= 2.0;
+    for (int i = 0; i < 100; ++i) {
+      double mid = 0.5 * (lo + hi);
+      (tau(mid) < t ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+  double binIntegral(double t0, double t1) const {
+    double a = t0 <= tau(0.0) ? 0.0 : sOfTau(t0), b = sOfTau(t1);
+    const int n = 200;
+    double h = (b - a) / n, sum = perUnitS(a) + perUnitS(b);
+    for (int i = 1; i < n; ++i) sum += perUnitS(a + i * h) * (i % 2 ? 4.0 : 2.0);
+    return sum * h / 3.0;
+  }
+};
+
+}  // namespace
+
+TEST(TransientPathMedia, SingleScatteringOplHistogramMatchesClosedForm) {
+  auto scene = singleScatteringScene();
+  const TransientIntegrator& integrator = transientIntegrator(*scene);
+  for (Vec3f d : {normalize(Vec3f(0.3f, 0.1f, 1.0f)), normalize(Vec3f(-1.0f, 0.5f, -0.2f))}) {
+    SCOPED_TRACE(str("direction ", d));
+    SingleScattering model{d};
+    const double tau0 = model.tau(0.0), width = 6.0;
+    const int bins = 24, n = 200000;
+    std::vector<Mean> histogram(bins);
+    Mean total;
+    auto sampler = seededSampler(31);
+    for (int i = 0; i < n; ++i) {
+      CollectingRecorder recorder;
+      integrator.sample(*scene, Ray(Point3f(0.0f), d), *sampler, recorder);
+      ASSERT_EQ(recorder.hits.size(), 1u) << "one next-event estimate per single-scattering path";
+      auto [opl, value] = recorder.hits[0];
+      ASSERT_GE(opl, tau0 - 1e-5);
+      int bin = int((opl - tau0) / width * bins);
+      for (int b = 0; b < bins; ++b) histogram[b].add(b == bin ? value.g : 0.0);
+      total.add(value.g);
+    }
+    for (int b = 0; b < bins; ++b) {
+      double t0 = tau0 + width * b / bins, t1 = tau0 + width * (b + 1) / bins;
+      expectWithinErrorBars(histogram[b], model.binIntegral(t0, t1), 1e-7, str("bin ", b, " [", t0, ", ", t1, ")"));
+    }
+    expectWithinErrorBars(total, model.binIntegral(tau0, tau0 + 200.0), 1e-7, "all OPLs");
+  }
+}
+
+TEST(TransientPathMedia, ScatteringDelayShiftsTheOpl) {
+  // A constant delay of 0.5 per scattering event shifts every single-scattering
+  // contribution by 0.5; an exponential lifetime of mean 0.3 adds 0.3 on average.
+  const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
+  auto meanOpl = [&](const std::string& phaseParams) {
+    auto scene = singleScatteringScene(phaseParams);
+    auto sampler = seededSampler(41);
+    Mean m;
+    for (int i = 0; i < 40000; ++i) {
+      CollectingRecorder recorder;
+      transientIntegrator(*scene).sample(*scene, Ray(Point3f(0.0f), d), *sampler, recorder);
+      for (const auto& [opl, value] : recorder.hits) m.add(opl);
+    }
+    return m;
+  };
+  Mean plain = meanOpl(""), delayed = meanOpl(R"(<float name="delay" value="0.5"/><float name="lifetime" value="0.3"/>)");
+  double se = std::sqrt(plain.standardError() * plain.standardError() + delayed.standardError() * delayed.standardError());
+  EXPECT_NEAR(delayed.mean() - plain.mean(), 0.8, 5.0 * se);
+}
+
+namespace {
+
+/// A closed sphere (radius 1) with diffuse reflectance rho emitting Le, filled
+/// with a non-absorbing medium, the camera inside it. A uniform radiance field
+/// L satisfies both the RTE (albedo 1: in-scattering replaces extinction) and
+/// the boundary condition L = Le + rho L, so L = Le / (1 - rho) everywhere.
+std::shared_ptr<Scene> mediumFurnace(const std::string& phase) {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"/>
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="1.5"/><float name="albedo" value="1"/>)",
+                             phase, R"(</medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <shape type="sphere">
+    <boolean name="flip_normals" value="true"/>
+    <bsdf type="diffuse"><float name="reflectance" value="0.5"/></bsdf>
+    <emitter type="area"><float name="radiance" value="1"/></emitter>
+    <ref name="interior" id="m"/><ref name="exterior" id="m"/>
+  </shape>
+</scene>)"));
+}
+
+}  // namespace
+
+TEST(TransientPathMedia, FurnaceWithConservativeMedium) {
+  for (const char* phase : {"", R"(<phase type="hg"><float name="g" value="0.6"/></phase>)"}) {
+    SCOPED_TRACE(phase);
+    auto scene = mediumFurnace(phase);
+    auto sampler = seededSampler(51);
+    PCG32 rng(3, 5);
+    Mean L;
+    for (int i = 0; i < 20000; ++i) {
+      Point3f o = warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}) * (0.5f * rng.nextFloat());
+      Ray ray(o, warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}));
+      CollectingRecorder recorder;
+      transientIntegrator(*scene).sample(*scene, ray, *sampler, recorder);
+      for (const auto& [opl, value] : recorder.hits) ASSERT_GT(opl, 0.0);
+      L.add(recorder.total().r);
+    }
+    expectWithinErrorBars(L, 2.0, 1e-4, "furnace radiance");
+  }
+}
+
+TEST(TransientPathMedia, SteadyResultEqualsPathWithoutMedia) {
+  // An area light (sphere), a diffuse floor and a diffuse box: transient_path's
+  // contributions summed over OPL estimate the same radiance as `path`.
+  auto sceneXml = [](const char* integrator) {
+    return str(R"(<scene version="3.0.0"><integrator type=")", integrator, R"("/>
+  <shape type="rectangle"><transform name="to_world"><scale value="5"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf></shape>
+  <shape type="cube"><transform name="to_world"><scale value="0.5"/><translate x="0.5" z="0.5"/></transform>
+    <bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="-0.5" y="0.2" z="2"/><float name="radius" value="0.4"/>
+    <emitter type="area"><rgb name="radiance" value="4, 5, 6"/></emitter></shape>
+</scene>)");
+  };
+  auto transient = loadSceneStrict(sceneXml("transient_path")), steady = loadSceneStrict(sceneXml("path"));
+  auto path = dynamic_cast<const SamplingIntegrator*>(&steady->integrator());
+  ASSERT_NE(path, nullptr);
+  auto samplerA = seededSampler(61), samplerB = seededSampler(62);
+  PCG32 rng(7, 9);
+  Mean a[3], b[3];
+  for (int i = 0; i < 20000; ++i) {
+    Point3f target(4.0f * rng.nextFloat() - 2.0f, 4.0f * rng.nextFloat() - 2.0f, 0.0f);
+    Ray ray(Point3f(0.3f, -3.0f, 2.5f), normalize(target - Point3f(0.3f, -3.0f, 2.5f)));
+    CollectingRecorder recorder;
+    transientIntegrator(*transient).sample(*transient, ray, *samplerA, recorder);
+    Color3f Lt = recorder.total(), Lp = path->Li(ray, *steady, *samplerB);
+    for (int c = 0; c < 3; ++c) {
+      a[c].add(Lt[c]);
+      b[c].add(Lp[c]);
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    double se = std::sqrt(a[c].standardError() * a[c].standardError() + b[c].standardError() * b[c].standardError());
+    EXPECT_NEAR(a[c].mean(), b[c].mean(), 5.0 * se) << "channel " << c;
+  }
+}
+
+TEST(TransientPathMedia, VolpathScenesLoadStrictly) {
+  const std::filesystem::path file = std::filesystem::path(FEMTO_SOURCE_DIR) / "../shared/scenes/lajolla-vol-cbox-fog-0.5/vol_cbox.xml";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not present";
+  PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
+  LoadOptions options;
+  options.strict = true;
+  auto scene = loadScene(file, options);
+  EXPECT_NE(scene->integrator().toString().find("TransientPathIntegrator"), std::string::npos);
+  ASSERT_NE(scene->sensor().medium(), nullptr);
+  EXPECT_NEAR(scene->sensor().medium()->majorant().r, 0.0015f, 1e-7f);
+  for (const auto& shape : scene->shapes()) EXPECT_EQ(shape->exteriorMedium(), scene->sensor().medium());
+}
+
+TEST(TransientPathMedia, VolpathMapsToTransientPathInBothDialects) {
+  for (const char* version : {"0.6.0", "3.0.0"}) {
+    auto scene = loadSceneStrict(str(R"(<scene version=")", version, R"("><integrator type="volpath"/></scene>)"));
+    EXPECT_NE(scene->integrator().toString().find("TransientPathIntegrator"), std::string::npos) << version;
+  }
+}

@@ -1,0 +1,174 @@
+// transient_path reports each contribution at its exact optical path length:
+// a point light over a diffuse plane (with and without observer time), the
+// delay of a glass slab, (eta_medium) scaling, scattering delays and the
+// film's horizon.
+#include <gtest/gtest.h>
+
+#include <femto/render/bsdf.h>
+#include <femto/render/emitter.h>
+
+#include "media_test_util.h"
+#include "plugin_util.h"
+#include "transient_test_util.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+const Point3f kLight(0.5f, -0.3f, 2.0f);
+const Color3f kIntensity(1.0f, 2.0f, 3.0f);
+const Color3f kRho(0.2f, 0.5f, 0.8f);
+
+std::shared_ptr<Scene> planeScene(const std::string& integratorParams, const std::string& extra = "") {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path">)", integratorParams, R"(</integrator>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="20"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+  </shape>
+  <emitter type="point"><point name="position" x="0.5" y="-0.3" z="2"/><rgb name="intensity" value="1, 2, 3"/></emitter>
+  )", extra, "</scene>"));
+}
+
+/// Radiance the plane reflects at x toward any viewer: rho / pi * I cos(theta) / d^2.
+Color3f planeRadiance(const Point3f& x) {
+  float d = distance(kLight, x);
+  return kRho * InvPi * kIntensity * (kLight.z / d) / (d * d);
+}
+
+}  // namespace
+
+TEST(TransientPathOPL, PointLightOverPlaneIsExact) {
+  const Point3f camera(1.0f, 2.0f, 3.0f);
+  for (bool observerTime : {true, false}) {
+    SCOPED_TRACE(str("observer_time = ", observerTime));
+    auto scene = planeScene(str(R"(<boolean name="observer_time" value=")", observerTime ? "true" : "false", R"("/>)"));
+    auto sampler = seededSampler(3);
+    for (Point3f x : {Point3f(0.2f, 0.4f, 0.0f), Point3f(-1.5f, 0.7f, 0.0f), Point3f(3.0f, -2.0f, 0.0f)}) {
+      CollectingRecorder recorder;
+      transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, recorder);
+      ASSERT_EQ(recorder.hits.size(), 1u) << "next-event estimation is the only contribution";
+      double expectedOpl = distance(kLight, x) + (observerTime ? distance(x, camera) : 0.0f);
+      EXPECT_NEAR(recorder.hits[0].first, expectedOpl, 1e-5 * expectedOpl);
+      Color3f expected = planeRadiance(x);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(recorder.hits[0].second[c], expected[c], 1e-5f * expected[c]);
+    }
+  }
+}
+
+TEST(TransientPathOPL, HorizonStopsPaths) {
+  auto scene = planeScene("");
+  auto sampler = seededSampler(4);
+  const Point3f camera(1.0f, 2.0f, 3.0f), x(0.2f, 0.4f, 0.0f);
+  double opl = distance(kLight, x) + distance(x, camera);
+  CollectingRecorder before(opl * 0.999), after(opl * 1.001);
+  transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, before);
+  transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, after);
+  EXPECT_TRUE(before.hits.empty());
+  EXPECT_EQ(after.hits.size(), 1u);
+}
+
+namespace {
+
+/// A test double for glass: an interface that always refracts (Snell's law,
+/// no Fresnel reflection, weight 1), reporting the relative IOR crossed in
+/// BSDFSample::eta as dielectrics do (int/ext entering, ext/int leaving).
+class RefractingInterface final : public BSDF {
+ public:
+  explicit RefractingInterface(float eta) : eta_(eta) {}
+  uint32_t flags() const override { return BSDFFlags::DeltaTransmission; }
+  Color3f sample(const SurfaceInteraction& si, float, const Point2f&, BSDFSample& bs, TransportMode) const override {
+    bs = BSDFSample();
+    float cosI = Frame::cosTheta(si.wi);
+    float eta = cosI > 0.0f ? eta_ : 1.0f / eta_;
+    float r = 1.0f / eta, sin2T = r * r * (1.0f - cosI * cosI);
+    if (sin2T >= 1.0f) return Color3f(0.0f);  // total internal reflection: absorbed by this double
+    float cosT = std::sqrt(1.0f - sin2T);
+    bs.wo = -si.wi * r + Vec3f(0, 0, 1) * (r * cosI - std::copysign(cosT, cosI));
+    bs.pdf = 1.0f;
+    bs.eta = eta;
+    bs.sampledFlags = BSDFFlags::DeltaTransmission;
+    return Color3f(1.0f);
+  }
+  Color3f eval(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return Color3f(0.0f); }
+  float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
+
+ private:
+  float eta_;
+};
+
+std::shared_ptr<Shape> rectangle(const Transform& toWorld, std::shared_ptr<BSDF> bsdf, bool flip = false) {
+  Properties props("rectangle");
+  props.setTransform("to_world", toWorld);
+  props.setBool("flip_normals", flip);
+  props.setObject("bsdf", bsdf);
+  return makePlugin<Shape>(ObjectKind::Shape, props);
+}
+
+/// A floor (diffuse, z = -3) lit by a point light below a glass slab of
+/// thickness h (z in [-h, 0]) when eta > 0, or without the slab.
+std::shared_ptr<Scene> slabScene(float eta, float h) {
+  Properties diffuseProps("diffuse");
+  diffuseProps.setColor("reflectance", kRho);
+  auto diffuse = makePlugin<BSDF>(ObjectKind::BSDF, diffuseProps);
+  Properties scene("scene");
+  scene.setObject("floor", rectangle(Transform::translate(Vec3f(0, 0, -3)) * Transform::scale(Vec3f(20.0f)), diffuse));
+  if (eta > 0.0f) {
+    auto glass = std::make_shared<RefractingInterface>(eta);
+    scene.setObject("top", rectangle(Transform::scale(Vec3f(5.0f)), glass));
+    scene.setObject("bottom", rectangle(Transform::translate(Vec3f(0, 0, -h)) * Transform::scale(Vec3f(5.0f)), glass, true));
+  }
+  Properties light("point");
+  light.setPoint("position", Point3f(0.8f, 0.0f, -2.0f));
+  light.setColor("intensity", kIntensity);
+  scene.setObject("light", makePlugin<Emitter>(ObjectKind::Emitter, light));
+  scene.setObject("integrator", makePlugin<Integrator>(ObjectKind::Integrator, Properties("transient_path")));
+  return std::make_shared<Scene>(scene);
+}
+
+}  // namespace
+
+TEST(TransientPathOPL, GlassSlabDelaysByEtaMinusOneTimesThickness) {
+  const float eta = 1.5f, h = 0.4f;
+  const Ray ray(Point3f(0, 0, 2), Vec3f(0, 0, -1));  // normal incidence: the path is straight
+  auto sampler = seededSampler(6);
+  auto vacuum = slabScene(0.0f, h), glass = slabScene(eta, h);
+  CollectingRecorder direct, delayed;
+  transientIntegrator(*vacuum).sample(*vacuum, ray, *sampler, direct);
+  transientIntegrator(*glass).sample(*glass, ray, *sampler, delayed);
+  ASSERT_EQ(direct.hits.size(), 1u);
+  ASSERT_EQ(delayed.hits.size(), 1u);
+  double light = distance(Point3f(0.8f, 0.0f, -2.0f), Point3f(0, 0, -3));
+  EXPECT_NEAR(direct.hits[0].first, 5.0 + light, 1e-5);
+  EXPECT_NEAR(delayed.hits[0].first - direct.hits[0].first, (eta - 1.0) * h, 1e-5);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(delayed.hits[0].second[c], direct.hits[0].second[c], 1e-6f);
+}
+
+TEST(TransientPathOPL, MediumIndexAndScatteringDelayScaleTheOpl) {
+  // A non-scattering, non-absorbing medium of index 1.33 around everything:
+  // every segment's OPL is multiplied by eta. With an absorbing medium the
+  // value is attenuated by exp(-sigma_a (camera + light distance)).
+  const Point3f camera(1.0f, 2.0f, 3.0f), x(0.2f, 0.4f, 0.0f);
+  const float eta = 1.33f, sigmaA = 0.1f;
+  auto scene = loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"/>
+  <medium id="m" type="homogeneous"><float name="sigma_s" value="0"/><float name="sigma_a" value=")", sigmaA,
+                                   R"("/><float name="eta" value=")", eta, R"("/></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="20"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+    <ref name="exterior" id="m"/>
+  </shape>
+  <emitter type="point"><point name="position" x="0.5" y="-0.3" z="2"/><rgb name="intensity" value="1, 2, 3"/></emitter>
+</scene>)"));
+  auto sampler = seededSampler(8);
+  CollectingRecorder recorder;
+  transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, recorder);
+  ASSERT_EQ(recorder.hits.size(), 1u);
+  double length = distance(kLight, x) + distance(x, camera);
+  EXPECT_NEAR(recorder.hits[0].first, eta * length, 1e-5 * length);
+  Color3f expected = planeRadiance(x) * std::exp(-sigmaA * float(length));
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(recorder.hits[0].second[c], expected[c], 1e-5f * expected[c]);
+}
