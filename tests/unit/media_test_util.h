@@ -21,7 +21,11 @@ namespace femto::test {
 /// Load a whole scene from XML in strict mode (plugins from the build tree).
 inline std::shared_ptr<Scene> loadSceneStrict(const std::string& xml,
                                               const std::filesystem::path& dir = std::filesystem::temp_directory_path()) {
-  PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
+  static bool searchPathSet = [] {
+    PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
+    return true;
+  }();
+  (void)searchPathSet;
   LoadOptions options;
   options.strict = true;
   return loadSceneFromString(xml, dir, options, "<media test>");

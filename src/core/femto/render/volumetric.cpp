@@ -37,7 +37,8 @@ Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(ray, si);
     float eta = medium ? medium->eta() : surfaceEta;
-    float segment = hit ? si.t : ray.tmax;
+    // The shadow ray stops short of the target (ShadowEpsilon); the medium is crossed all the way.
+    float segment = hit ? si.t : (finite ? distance(ray.o, target) : Infinity);
     if (medium) tr *= medium->transmittance(ray, segment, sampler);
     if (hit || finite) result.opl += double(eta) * distance(start, hit ? si.p : target);
     if (!hit) {
