@@ -182,3 +182,38 @@ TEST(TransientPathOPL, MediumIndexScalesTheOplAndAbsorptionAttenuates) {
   }
   expectWithinErrorBars(reached, std::exp(-sigmaA * cameraDistance), 1e-6, "fraction of paths reaching the plane");
 }
+
+TEST(TransientPathOPL, DielectricSlabDelaysTransmittedLight) {
+  // The same slab with the `dielectric` plugin (IOR 1.5 in vacuum). With
+  // max_depth = 4 only the path refracted twice reaches the floor and its
+  // light, at OPL 5 + (eta - 1) h + |light - floor|; Fresnel reflection at
+  // normal incidence, R = ((eta - 1) / (eta + 1))^2, leaves (1 - R)^2 of the
+  // vacuum radiance on average (the 1/eta^2 radiance scalings cancel).
+  const float eta = 1.5f, h = 0.4f;
+  auto scene = loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="4"/></integrator>
+  <bsdf type="dielectric" id="glass"><float name="int_ior" value=")", eta, R"("/><float name="ext_ior" value="1"/></bsdf>
+  <shape type="rectangle"><transform name="to_world"><scale value="5"/></transform><ref id="glass"/></shape>
+  <shape type="rectangle"><boolean name="flip_normals" value="true"/>
+    <transform name="to_world"><scale value="5"/><translate z=")", -h, R"("/></transform><ref id="glass"/></shape>
+  <shape type="rectangle"><transform name="to_world"><scale value="20"/><translate z="-3"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></shape>
+  <emitter type="point"><point name="position" x="0.8" y="0" z="-2"/><rgb name="intensity" value="1, 2, 3"/></emitter>
+</scene>)"));
+  const Ray ray(Point3f(0, 0, 2), Vec3f(0, 0, -1));
+  const Point3f floor(0, 0, -3), light(0.8f, 0.0f, -2.0f);
+  float d = distance(light, floor);
+  Color3f vacuum = kRho * InvPi * kIntensity * ((light.z - floor.z) / d) / (d * d);
+  double expectedOpl = 5.0 + (eta - 1.0) * h + d;
+  float R = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
+  auto sampler = seededSampler(10);
+  Mean value;
+  for (int i = 0; i < 20000; ++i) {
+    CollectingRecorder recorder;
+    transientIntegrator(*scene).sample(*scene, ray, *sampler, recorder);
+    ASSERT_LE(recorder.hits.size(), 1u);
+    for (const auto& [opl, v] : recorder.hits) EXPECT_NEAR(opl, expectedOpl, 1e-5 * expectedOpl);
+    value.add(recorder.hits.empty() ? 0.0 : recorder.hits[0].second.g);
+  }
+  expectWithinErrorBars(value, (1.0 - R) * (1.0 - R) * vacuum.g, 1e-6, "transmitted radiance");
+}
