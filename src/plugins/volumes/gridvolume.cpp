@@ -10,8 +10,9 @@
 // As in Mitsuba 0.6, the samples sit on the grid's vertices: sample (0,0,0)
 // at the box's min corner and (xres-1, yres-1, zres-1) at its max corner;
 // outside the box the volume is 0. "to_world" places the box in the scene.
-// (Mitsuba 3 maps its grids to the unit cube; its own .vol writer stores the
-// unit box, so such files place identically.)
+// (Mitsuba 3 places grids in the unit cube whatever box the file stores, and
+// its samples sit at cell centres: a Mitsuba 3 scene whose file stores a
+// different box, or that relies on cell-centred samples, places differently.)
 //
 // | name     | type      | default  | meaning                                    | unit |
 // |----------|-----------|----------|--------------------------------------------|------|
