@@ -382,3 +382,16 @@ TEST(SmoothBSDFErrors, BadValuesAreReportedWithFileAndLine) {
   expectError("mask", [](Properties& p) { p.setFloat("opacity", 1.5, kWhere); p.setObject("b", makeDiffuse(Color3f(0.5f))); },
               "scene.xml:12", "must lie in [0, 1]");
 }
+
+TEST(ConductorBSDF, ExteriorIndexScalesTheOpticalConstants) {
+  // Mitsuba 0.6's extEta (upgraded to ext_eta): a metal under water reflects less.
+  const float water = *lookupIOR("water");
+  auto inWater = make("conductor", [&](Properties& p) {
+    p.setColor("eta", Color3f(water * 0.2f));
+    p.setColor("k", Color3f(water * 3.0f));
+    p.setString("ext_eta", "water");
+  });
+  BSDFSample bs;
+  Color3f w = inWater->sample(localInteraction({0, 0, 1}), 0, {0, 0}, bs);
+  EXPECT_NEAR(w.g, fresnelConductor(1.0f, Color3f(0.2f), Color3f(3.0f)).g, 1e-5f);
+}

@@ -5,16 +5,18 @@
 // mirror) or are given directly. One-sided, as in Mitsuba: light from below
 // the shading surface is absorbed.
 //
-// | name                 | type           | default | meaning                                             | unit |
-// |----------------------|----------------|---------|-----------------------------------------------------|------|
-// | material             | string         | "none"  | named metal ("Au", "Ag", "Al", "Cu", ...)           | -    |
-// | eta                  | rgb or float   | -       | real part of the index (instead of material; needs k) | -  |
-// | k                    | rgb or float   | -       | imaginary part (absorption coefficient; needs eta)  | -    |
-// | specular_reflectance | rgb or texture | 1       | scale of the reflectance (not physical)             | -    |
+// | name                 | type            | default | meaning                                                             | unit |
+// |----------------------|-----------------|---------|---------------------------------------------------------------------|------|
+// | material             | string          | "none"  | named metal ("Au", "Ag", "Al", "Cu", ...)                           | -    |
+// | eta                  | rgb or float    | -       | real part of the index (instead of material; needs k)               | -    |
+// | k                    | rgb or float    | -       | imaginary part, the extinction coefficient (needs eta)              | -    |
+// | ext_eta              | float or string | 1       | exterior index (Mitsuba 0.6's extEta); eta and k are relative to it | -    |
+// | specular_reflectance | rgb or texture  | 1       | scale of the reflectance (not physical)                             | -    |
 #include <femto/core/plugin.h>
 #include <femto/core/spelling.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/fresnel.h>
+#include <femto/render/ior.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -34,23 +36,11 @@ class ConductorBSDF final : public BSDF {
  public:
   explicit ConductorBSDF(const Properties& props)
       : reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))) {
-    const bool hasEta = props.has("eta"), hasK = props.has("k");
-    if (hasEta || hasK) {
-      if (props.has("material"))
-        props.raise("material", "give either a material name or eta and k, not both");
-      if (!hasEta || !hasK) props.raise(hasEta ? "eta" : "k", "eta and k must be given together");
-      eta_ = nonNegativeColor(props, "eta");
-      k_ = nonNegativeColor(props, "k");
-      material_ = "custom";
-      return;
-    }
-    material_ = props.getString("material", "none");
-    auto constants = lookupConductor(material_);
-    if (!constants)
-      props.raise("material", str("unknown conductor \"", material_, "\"", didYouMean(material_, knownConductorNames()),
-                                  "; give eta and k for other metals"));
-    eta_ = constants->first;
-    k_ = constants->second;
+    readOpticalConstants(props);
+    // The Fresnel equations depend on the index relative to the exterior.
+    const float extEta = iorFromProperties(props, "ext_eta", 1.0f);
+    eta_ = eta_ / extEta;
+    k_ = k_ / extEta;
   }
 
   uint32_t flags() const override { return BSDFFlags::DeltaReflection; }
@@ -74,6 +64,27 @@ class ConductorBSDF final : public BSDF {
   }
 
  private:
+  /// eta and k from `material` (default "none") or from explicit eta and k.
+  void readOpticalConstants(const Properties& props) {
+    const bool hasEta = props.has("eta"), hasK = props.has("k");
+    if (hasEta || hasK) {
+      if (props.has("material"))
+        props.raise("material", "give either a material name or eta and k, not both");
+      if (!hasEta || !hasK) props.raise(hasEta ? "eta" : "k", "eta and k must be given together");
+      eta_ = nonNegativeColor(props, "eta");
+      k_ = nonNegativeColor(props, "k");
+      material_ = "custom";
+      return;
+    }
+    material_ = props.getString("material", "none");
+    auto constants = lookupConductor(material_);
+    if (!constants)
+      props.raise("material", str("unknown conductor \"", material_, "\"", didYouMean(material_, knownConductorNames()),
+                                  "; give eta and k for other metals"));
+    eta_ = constants->first;
+    k_ = constants->second;
+  }
+
   std::string material_;
   Color3f eta_, k_;
   std::shared_ptr<Texture> reflectance_;
