@@ -11,6 +11,7 @@
 #include <string>
 
 #include <femto/math/pcg32.h>
+#include <femto/math/warp.h>
 #include <femto/render/integrator.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
@@ -84,6 +85,13 @@ inline void expectWithinErrorBars(const Estimate& e, const Color3f& expected) {
     EXPECT_NEAR(e.mean[c], expected[c], tolerance)
         << "channel " << c << ": standard error " << e.standardError[c];
   }
+}
+
+/// Rays from random points well inside the unit sphere in uniform directions:
+/// in the furnace the radiance is the same everywhere.
+inline Ray randomInteriorRay(PCG32& rng) {
+  Point3f o = warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}) * (0.5f * rng.nextFloat());
+  return Ray(o, warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}));
 }
 
 }  // namespace femto::test

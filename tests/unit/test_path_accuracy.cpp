@@ -50,13 +50,6 @@ Color3f furnaceRadiance(const Color3f& rho, const Color3f& Le, int maxDepth) {
   return L;
 }
 
-/// Rays from random points well inside the unit sphere in uniform directions:
-/// in the furnace the radiance is the same everywhere.
-Ray randomInteriorRay(PCG32& rng) {
-  Point3f o = warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}) * (0.5f * rng.nextFloat());
-  return Ray(o, warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()}));
-}
-
 const Color3f kRho(0.3f, 0.5f, 0.8f);
 const Color3f kLe(1.0f, 0.5f, 2.0f);
 

@@ -13,20 +13,12 @@
 // | hide_emitters | boolean | false   | emitters seen directly by the camera appear black | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/direct_lighting.h>
 #include <femto/render/integrator.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 
 namespace femto {
-namespace {
-
-/// Power heuristic with beta = 2 (Veach 1997, eq. 9.13), one sample per strategy.
-float powerHeuristic(float pdfA, float pdfB) {
-  float a = pdfA * pdfA, b = pdfB * pdfB;
-  return a > 0.0f ? a / (a + b) : 0.0f;
-}
-
-}  // namespace
 
 class PathIntegrator final : public SamplingIntegrator {
  public:
@@ -42,34 +34,20 @@ class PathIntegrator final : public SamplingIntegrator {
     Color3f L(0.0f), throughput(1.0f);
     if (maxDepth_ == 0) return L;
     Ray ray = cameraRay;
-    // The previous scattering vertex, for weighting emission found by BSDF sampling.
-    Point3f prevP = ray.o;
-    float prevBsdfPdf = 1.0f;
-    bool prevDelta = true;  // camera rays count as delta: no other strategy finds what they see
-    float travelled = 0.0f;  // along ray.d since prevP, across interfaces the path passed straight through
+    // The previous scattering vertex, for weighting emission found by BSDF
+    // sampling; camera rays count as delta: no other strategy finds what they see.
+    ScatterOrigin prev;
+    prev.p = ray.o;
+    float travelled = 0.0f;  // along ray.d since prev.p, across interfaces the path passed straight through
     float etaScale = 1.0f;
     for (int depth = 0;; ) {
       SurfaceInteraction si;
       if (!scene.rayIntersect(ray, si)) {
-        if (!(hideEmitters_ && depth == 0)) L += throughput * environment(scene, ray, prevP, prevBsdfPdf, prevDelta);
+        if (!(hideEmitters_ && depth == 0)) L += throughput * environmentFound(scene, ray, prev);
         break;
       }
       // Emission found by the path (a camera ray, or BSDF sampling).
-      if (const Emitter* emitter = si.emitter(); emitter && !(hideEmitters_ && depth == 0)) {
-        Color3f Le = si.Le(-ray.d);
-        if (!Le.isBlack()) {
-          float weight = 1.0f;
-          if (!prevDelta) {
-            DirectionSample ds;
-            ds.p = si.p;
-            ds.n = si.n;
-            ds.d = ray.d;
-            ds.dist = travelled + si.t;
-            weight = powerHeuristic(prevBsdfPdf, scene.pdfEmitterDirection(prevP, ds, emitter));
-          }
-          L += throughput * Le * weight;
-        }
-      }
+      if (!(hideEmitters_ && depth == 0)) L += throughput * emissionFound(scene, si, ray.d, travelled + si.t, prev);
 
       if (++depth == maxDepth_) break;  // the next segment would exceed max_depth
       const BSDF* bsdf = si.bsdf();
@@ -81,18 +59,7 @@ class PathIntegrator final : public SamplingIntegrator {
       }
 
       // Next-event estimation: a path one segment longer, ending on an emitter.
-      if (bsdf->hasSmooth()) {
-        DirectionSample ds;
-        Color3f emitterWeight = scene.sampleEmitterDirection(si, sampler.next2D(), ds, true);
-        if (ds.pdf > 0.0f && !emitterWeight.isBlack()) {
-          Vec3f wo = si.toLocal(ds.d);
-          Color3f f = bsdf->eval(si, wo);
-          if (!f.isBlack()) {
-            float weight = ds.delta ? 1.0f : powerHeuristic(ds.pdf, bsdf->pdf(si, wo));
-            L += throughput * f * emitterWeight * weight;
-          }
-        }
-      }
+      L += throughput * sampleEmitterMIS(scene, si, *bsdf, sampler.next2D());
 
       // BSDF sampling: continue the path.
       BSDFSample bs;
@@ -100,10 +67,10 @@ class PathIntegrator final : public SamplingIntegrator {
       if (!(bs.pdf > 0.0f) || bsdfWeight.isBlack()) break;
       throughput *= bsdfWeight;
       etaScale *= bs.eta * bs.eta;
-      prevP = si.p;
+      prev.p = si.p;
       travelled = 0.0f;
-      prevBsdfPdf = bs.pdf;
-      prevDelta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
+      prev.bsdfPdf = bs.pdf;
+      prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
       ray = si.spawnRay(si.toWorld(bs.wo));
 
       // Russian roulette on the throughput, with the radiance scaling of
@@ -124,27 +91,6 @@ class PathIntegrator final : public SamplingIntegrator {
   }
 
  private:
-  /// Radiance from environment emitters along an escaping ray, MIS-weighted
-  /// against emitter sampling like surface emission.
-  static Color3f environment(const Scene& scene, const Ray& ray, const Point3f& prevP, float prevBsdfPdf,
-                             bool prevDelta) {
-    Color3f result(0.0f);
-    for (const Emitter* emitter : scene.environmentEmitters()) {
-      Color3f Le = emitter->evalEnvironment(ray);
-      if (Le.isBlack()) continue;
-      float weight = 1.0f;
-      if (!prevDelta) {
-        DirectionSample ds;
-        ds.d = ray.d;
-        ds.dist = Infinity;
-        ds.p = prevP + ray.d;  // only the direction matters for distant emitters
-        weight = powerHeuristic(prevBsdfPdf, scene.pdfEmitterDirection(prevP, ds, emitter));
-      }
-      result += Le * weight;
-    }
-    return result;
-  }
-
   int maxDepth_;
   int rrDepth_;
   bool hideEmitters_;

@@ -16,7 +16,7 @@
 namespace femto {
 namespace {
 
-std::vector<const char*> exrChannelNames(int channels) {
+std::vector<std::string> exrChannelNames(int channels) {
   switch (channels) {
     case 1: return {"Y"};
     case 3: return {"R", "G", "B"};
@@ -25,10 +25,14 @@ std::vector<const char*> exrChannelNames(int channels) {
   }
 }
 
-void checkImage(const std::filesystem::path& path, const Bitmap& image) {
+void checkShape(const std::filesystem::path& path, const Bitmap& image) {
   if (image.width <= 0 || image.height <= 0 || image.data.size() != size_t(image.width) * image.height * image.channels)
     throw Error(str("cannot write \"", path.string(), "\": the image is empty or inconsistent (", image.width, "x",
                     image.height, "x", image.channels, ")"));
+}
+
+void checkImage(const std::filesystem::path& path, const Bitmap& image) {
+  checkShape(path, image);
   if (image.channels != 1 && image.channels != 3 && image.channels != 4)
     throw Error(str("cannot write \"", path.string(), "\": ", image.channels, " channels (1, 3 or 4 are supported)"));
 }
@@ -43,12 +47,19 @@ float linearToSRGB(float v) {
 
 void writeEXR(const std::filesystem::path& path, const Bitmap& image) {
   checkImage(path, image);
+  writeEXR(path, image, exrChannelNames(image.channels));
+}
+
+void writeEXR(const std::filesystem::path& path, const Bitmap& image, const std::vector<std::string>& names) {
+  checkShape(path, image);
+  if (names.size() != size_t(image.channels))
+    throw Error(str("cannot write \"", path.string(), "\": ", names.size(), " channel names for ", image.channels,
+                    " channels"));
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     try {
       Imf::Header header(image.width, image.height);
       Imf::FrameBuffer frameBuffer;
       const size_t xStride = sizeof(float) * image.channels, yStride = xStride * image.width;
-      auto names = exrChannelNames(image.channels);
       for (int c = 0; c < image.channels; ++c) {
         header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
         // OpenEXR only reads through the pointer; its API is not const-correct.
@@ -106,6 +117,7 @@ Bitmap readImage(const std::filesystem::path& path, ImageFileInfo& info) {
   Bitmap image(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data.data()))
     throw Error(str("cannot read image \"", path.string(), "\": ", in->geterror()));
+  info.channelNames.assign(spec.channelnames.begin(), spec.channelnames.end());
   in->close();
   return image;
 }

@@ -21,6 +21,9 @@ struct Bitmap {
 
 /// Write RGB(A) or single-channel float data as OpenEXR (channels R,G,B[,A] or Y).
 void writeEXR(const std::filesystem::path& path, const Bitmap& image);
+/// Write any number of float channels under the given names (one per
+/// channel, e.g. "dd.T", "nn.X"), for arbitrary output variables.
+void writeEXR(const std::filesystem::path& path, const Bitmap& image, const std::vector<std::string>& channelNames);
 /// Write an 8-bit sRGB PNG preview: linear value * 2^exposure, clamped, sRGB-encoded.
 void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure = 0.0f);
 /// Read any image OpenImageIO can open (EXR, HDR, PNG, JPEG, ...), as float.
@@ -33,6 +36,8 @@ struct ImageFileInfo {
   /// i.e. the file does not declare itself linear. Float formats never do.
   bool srgbEncoded = false;
   int bitsPerSample = 32;
+  /// The file's channel names, in the order of the data ("R", "nn.X", ...).
+  std::vector<std::string> channelNames;
 };
 /// readImage that also reports how the file stored its values.
 Bitmap readImage(const std::filesystem::path& path, ImageFileInfo& info);

@@ -3,23 +3,42 @@
 #include <algorithm>
 #include <cmath>
 
+#include <femto/core/error.h>
 #include <femto/render/rfilter.h>
 
 namespace femto {
 
 ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter)
-    : offset_(offset), size_(size), filter_(filter) {
+    : ImageBlock(offset, size, filter, 3) {}
+
+ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter, int channels)
+    : offset_(offset), size_(size), filter_(filter), channels_(channels) {
+  if (channels < 1) throw Error(str("an image block needs at least one channel, got ", channels));
   // A sample inside the tile reaches pixels whose centres lie within the
   // filter radius: at most ceil(radius - 1/2) pixels beyond the tile's edge.
   float radius = filter ? filter->radius() : 0.5f;
   border_ = std::max(0, int(std::ceil(radius - 0.5f)));
-  data_.assign(size_t(storedWidth()) * storedHeight() * 4, 0.0f);
+  data_.assign(size_t(storedWidth()) * storedHeight() * stride(), 0.0f);
 }
 
 void ImageBlock::clear() { std::fill(data_.begin(), data_.end(), 0.0f); }
 
 bool ImageBlock::put(const Point2f& pos, const Color3f& value) {
+  if (channels_ != 3) throw Error(str("an RGB sample was put into an image block of ", channels_, " channels"));
   if (!value.isValid()) return false;
+  const float rgb[3] = {value.r, value.g, value.b};
+  splat(pos, rgb);
+  return true;
+}
+
+bool ImageBlock::put(const Point2f& pos, const float* values) {
+  for (int c = 0; c < channels_; ++c)
+    if (!std::isfinite(values[c])) return false;
+  splat(pos, values);
+  return true;
+}
+
+void ImageBlock::splat(const Point2f& pos, const float* values) {
   float radius = filter_ ? filter_->radius() : 0.5f;
   // Position relative to the stored area, shifted so pixel i has its centre at i.
   float px = pos.x - float(offset_.x - border_) - 0.5f;
@@ -30,7 +49,7 @@ bool ImageBlock::put(const Point2f& pos, const Color3f& value) {
   int x1 = std::min(storedWidth() - 1, int(std::floor(px + radius)));
   int y0 = std::max(0, int(std::floor(py - radius)) + 1);
   int y1 = std::min(storedHeight() - 1, int(std::floor(py + radius)));
-  if (x0 > x1 || y0 > y1) return true;  // outside this block: nothing to add, but not an invalid value
+  if (x0 > x1 || y0 > y1) return;  // outside this block: nothing to add
 
   constexpr int MaxFootprint = 64;
   float wx[MaxFootprint], wy[MaxFootprint];
@@ -40,17 +59,14 @@ bool ImageBlock::put(const Point2f& pos, const Color3f& value) {
   for (int y = y0; y <= y1; ++y) wy[y - y0] = filter_ ? filter_->evalTabulated(float(y) - py) : 1.0f;
 
   for (int y = y0; y <= y1; ++y) {
-    float* row = &data_[(size_t(y) * storedWidth()) * 4];
+    float* row = &data_[(size_t(y) * storedWidth()) * stride()];
     for (int x = x0; x <= x1; ++x) {
       float w = wx[x - x0] * wy[y - y0];
-      float* d = row + size_t(x) * 4;
-      d[0] += value.r * w;
-      d[1] += value.g * w;
-      d[2] += value.b * w;
-      d[3] += w;
+      float* d = row + size_t(x) * stride();
+      for (int c = 0; c < channels_; ++c) d[c] += values[c] * w;
+      d[channels_] += w;
     }
   }
-  return true;
 }
 
 void ImageBlock::merge(const ImageBlock& other) {
@@ -60,18 +76,26 @@ void ImageBlock::merge(const ImageBlock& other) {
   int x0 = std::max(ox, tx), x1 = std::min(ox + other.storedWidth(), tx + storedWidth());
   int y0 = std::max(oy, ty), y1 = std::min(oy + other.storedHeight(), ty + storedHeight());
   if (x0 >= x1) return;
+  if (other.channels_ != channels_)
+    throw Error(str("cannot merge an image block of ", other.channels_, " channels into one of ", channels_));
   for (int y = y0; y < y1; ++y) {
     const float* src = other.pixel(x0 - ox, y - oy);
-    float* dst = &data_[(size_t(y - ty) * storedWidth() + (x0 - tx)) * 4];
-    for (int i = 0; i < (x1 - x0) * 4; ++i) dst[i] += src[i];
+    float* dst = &data_[(size_t(y - ty) * storedWidth() + (x0 - tx)) * stride()];
+    for (size_t i = 0; i < size_t(x1 - x0) * stride(); ++i) dst[i] += src[i];
   }
 }
 
 Color3f ImageBlock::value(const Point2i& p) const {
+  if (channels_ != 3) throw Error(str("an RGB value was asked of an image block of ", channels_, " channels"));
+  float v[3];
+  values(p, v);
+  return Color3f(v[0], v[1], v[2]);
+}
+
+void ImageBlock::values(const Point2i& p, float* out) const {
   const float* d = pixel(p.x - offset_.x + border_, p.y - offset_.y + border_);
-  if (d[3] == 0.0f) return Color3f(0.0f);
-  float inv = 1.0f / d[3];
-  return Color3f(d[0] * inv, d[1] * inv, d[2] * inv);
+  float inv = d[channels_] == 0.0f ? 0.0f : 1.0f / d[channels_];
+  for (int c = 0; c < channels_; ++c) out[c] = d[c] * inv;
 }
 
 }  // namespace femto

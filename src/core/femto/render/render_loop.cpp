@@ -18,6 +18,10 @@ namespace {
 
 constexpr int TileSize = 32;
 
+/// Computes one sample at a film position and splats it into a block;
+/// returns false when the block refused the value as invalid.
+using SplatFunction = std::function<bool(const Point2f& filmPos, Sampler& sampler, ImageBlock& block)>;
+
 struct Tile {
   Point2i offset, size;
   std::unique_ptr<ImageBlock> block;  // null until rendered (or when cancelled before)
@@ -38,9 +42,9 @@ std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size) {
 
 /// Render one tile into its own block. Each pixel restarts the sampler from
 /// (seed, pixel index), so the values do not depend on which thread runs it.
-void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const SampleFunction& sampleFn,
-                const ReconstructionFilter* filter) {
-  tile.block = std::make_unique<ImageBlock>(tile.offset, tile.size, filter);
+void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const SplatFunction& splatFn,
+                const ReconstructionFilter* filter, int channels) {
+  tile.block = std::make_unique<ImageBlock>(tile.offset, tile.size, filter, channels);
   std::unique_ptr<Sampler> sampler = prototype.clone();
   const uint32_t spp = prototype.sampleCount();
   for (int y = tile.offset.y; y < tile.offset.y + tile.size.y; ++y)
@@ -49,17 +53,15 @@ void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t se
       for (uint32_t s = 0; s < spp; ++s) {
         Point2f jitter = sampler->next2D();
         Point2f pos(float(x) + jitter.x, float(y) + jitter.y);
-        if (!tile.block->put(pos, sampleFn(pos, *sampler))) ++tile.invalid;
+        if (!splatFn(pos, *sampler, *tile.block)) ++tile.invalid;
         ++tile.samples;
         sampler->advance();
       }
     }
 }
 
-}  // namespace
-
-RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
-                        ImageBlock& result) {
+RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
+                             ImageBlock& result) {
   const Film& film = scene.sensor().film();
   const Sampler& prototype = scene.sensor().sampler();
   std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
@@ -75,7 +77,7 @@ RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const 
           cancelled = true;
           return;
         }
-        renderTile(tiles[i], prototype, film.size().x, options.seed, sampleFn, film.filter());
+        renderTile(tiles[i], prototype, film.size().x, options.seed, splatFn, film.filter(), result.channelCount());
         progress.update(uint64_t(tiles[i].size.x) * uint64_t(tiles[i].size.y));
       }
     });
@@ -103,6 +105,24 @@ RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const 
     logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
   if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
   return stats;
+}
+
+}  // namespace
+
+RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
+                        ImageBlock& result) {
+  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+    return block.put(pos, sampleFn(pos, sampler));
+  }, result);
+}
+
+RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
+                               ImageBlock& result) {
+  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+    std::vector<float> values(size_t(block.channelCount()), 0.0f);
+    sampleFn(pos, sampler, values.data());
+    return block.put(pos, values.data());
+  }, result);
 }
 
 }  // namespace femto

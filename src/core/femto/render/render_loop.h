@@ -22,4 +22,12 @@ using SampleFunction = std::function<Color3f(const Point2f& filmPos, Sampler& sa
 RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
                         ImageBlock& result);
 
+/// Called per sample: writes result.channelCount() values for `filmPos`
+/// (arbitrary output variables: any sign; NaN/Inf are refused and counted).
+using ChannelSampleFunction = std::function<void(const Point2f& filmPos, Sampler& sampler, float* values)>;
+
+/// renderTiles for blocks of any number of channels.
+RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
+                               ImageBlock& result);
+
 }  // namespace femto

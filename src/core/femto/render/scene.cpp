@@ -20,7 +20,20 @@ Scene::Scene(const Properties& props) {
   for (const auto& shape : shapes_)
     if (shape->emitterRef() && std::find(emitters_.begin(), emitters_.end(), shape->emitterRef()) == emitters_.end())
       emitters_.push_back(shape->emitterRef());
-  sensor_ = nestedOrDefault<Sensor>(props, ObjectKind::Sensor, "perspective");
+  // A sensor nested in a shape (an irradiance meter) serves when the scene has no other.
+  std::vector<std::shared_ptr<Sensor>> shapeSensors;
+  for (const auto& shape : shapes_)
+    if (shape->sensorRef()) shapeSensors.push_back(shape->sensorRef());
+  if (!shapeSensors.empty()) {
+    if (shapeSensors.size() > 1 || props.objectOfKind(ObjectKind::Sensor))
+      throw Error(props.location(), str("the scene has ", shapeSensors.size() + (props.objectOfKind(ObjectKind::Sensor) ? 1 : 0),
+                                        " sensors (counting those nested in shapes); femto renders exactly one"));
+    sensor_ = shapeSensors.front();
+  } else {
+    sensor_ = nestedOrDefault<Sensor>(props, ObjectKind::Sensor, "perspective");
+    if (sensor_->requiresShape())
+      throw Error(props.location(), str(sensor_->toString(), " measures on a shape: nest it inside a <shape>"));
+  }
   integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
 
   // A shapegroup is only seen through its instances.

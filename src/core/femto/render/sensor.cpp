@@ -19,4 +19,21 @@ Sensor::Sensor(const Properties& props) {
   if (close < open) props.raise("shutter_close", str("must not be before shutter_open (", open, ")"));
 }
 
+void Sensor::useSinglePixelFilmUnlessGiven(const Properties& props) {
+  if (props.objectOfKind(ObjectKind::Film)) return;
+  Properties box("box");
+  box.setLocation(props.location());
+  Properties film("hdrfilm");
+  film.setLocation(props.location());
+  film.setInt("width", 1);
+  film.setInt("height", 1);
+  film.setObject("rfilter", PluginManager::instance().create(ObjectKind::ReconstructionFilter, box));
+  film_ = std::dynamic_pointer_cast<Film>(PluginManager::instance().create(ObjectKind::Film, film));
+  if (!film_) throw Error(props.location(), "the hdrfilm plugin did not create a film");
+}
+
+void Sensor::setShape(const Shape*) {
+  throw Error(str(toString(), " cannot be attached to a shape (only sensors such as irradiancemeter can)"));
+}
+
 }  // namespace femto

@@ -4,6 +4,7 @@
 #include <femto/render/bsdf.h>
 #include <femto/render/emitter.h>
 #include <femto/render/medium.h>
+#include <femto/render/sensor.h>
 
 namespace femto {
 namespace {
@@ -33,6 +34,14 @@ Shape::Shape(const Properties& props) {
   // The derived constructor has not built the geometry yet: emitters must only
   // remember the shape here and query it later.
   if (emitter_) emitter_->setShape(this);
+  sensor_ = props.object<Sensor>(ObjectKind::Sensor);
+  if (sensor_) {
+    try {
+      sensor_->setShape(this);
+    } catch (const Error& e) {
+      throw Error(props.location(), e.what());
+    }
+  }
 }
 
 Shape::~Shape() = default;

@@ -14,6 +14,7 @@ namespace femto {
 class BSDF;
 class Emitter;
 class Medium;
+class Sensor;
 class TriangleMesh;
 
 /// A point sampled on a surface, with its area-measure density.
@@ -28,7 +29,8 @@ class Shape : public Object {
  public:
   /// Reads the nested <bsdf> (a shape without one gets Mitsuba's default,
   /// diffuse with reflectance 0.5, unless it only bounds media), an optional
-  /// nested area <emitter> and the media refs "interior"/"exterior".
+  /// nested area <emitter>, an optional nested <sensor> that measures on the
+  /// shape (irradiancemeter) and the media refs "interior"/"exterior".
   explicit Shape(const Properties& props);
   ~Shape() override;
   ObjectKind kind() const override { return ObjectKind::Shape; }
@@ -50,6 +52,8 @@ class Shape : public Object {
   const BSDF* bsdf() const { return bsdf_.get(); }
   const Emitter* emitter() const { return emitter_.get(); }
   const std::shared_ptr<Emitter>& emitterRef() const { return emitter_; }
+  /// The sensor nested in this shape, or null.
+  const std::shared_ptr<Sensor>& sensorRef() const { return sensor_; }
   const Medium* interiorMedium() const { return interior_.get(); }
   const Medium* exteriorMedium() const { return exterior_.get(); }
 
@@ -57,6 +61,7 @@ class Shape : public Object {
   std::shared_ptr<BSDF> bsdf_;
   std::shared_ptr<Emitter> emitter_;
   std::shared_ptr<Medium> interior_, exterior_;
+  std::shared_ptr<Sensor> sensor_;
 };
 
 }  // namespace femto
