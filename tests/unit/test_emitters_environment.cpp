@@ -14,6 +14,7 @@
 #include <femto/render/scene.h>
 
 #include "chi2.h"
+#include "expect_color.h"
 #include "li_estimate.h"
 #include "render_test_util.h"
 
@@ -57,12 +58,6 @@ ChiSquareResult testDirectionSampling(const Emitter& emitter, const Point3f& ref
     return emitter.pdfDirection(ref, ds);
   };
   return testSampler<Vec3f>(sphericalDomain(32, 64), sample, pdf, 500000, 16);
-}
-
-void expectColorNear(const Color3f& actual, const Color3f& expected, float relative = 1e-5f) {
-  for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(actual[c], expected[c], relative * std::max(1.0f, std::abs(expected[c])))
-        << "channel " << c << " of " << actual;
 }
 
 /// Every sample: value * pdf is the radiance the emitter shows along ds.d,
@@ -139,7 +134,7 @@ TEST(ConstantEmitter, SamplesTheSphereUniformlyAndReturnsRadianceOverPdf) {
   ChiSquareResult r = testDirectionSampling(emitter, {0.2f, 0.1f, -0.3f});
   EXPECT_GT(r.pValue, kSignificance) << r.message;
   expectSamplesConsistent(emitter, {1.0f, 2.0f, 3.0f});
-  expectColorNear(scene->evalEnvironment(Ray({0, 0, 0}, normalize(Vec3f(1, -2, 3)))), L);
+  expectColorNear(scene->evalEnvironment(Ray({0, 0, 0}, normalize(Vec3f(1, -2, 3)))), L, 1e-5f);
 }
 
 TEST(ConstantEmitter, EmitsRaysIntoTheSceneWithItsPower) {
@@ -194,7 +189,7 @@ TEST_F(EnvironmentMapTest, AConstantMapEqualsTheConstantEmitter) {
   const Point3f ref(0.5f, 0.5f, 0.5f);
   for (int i = 0; i < 200; ++i) {
     Vec3f d = warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()});
-    expectColorNear(env.evalEnvironment(Ray(ref, d)), constant.evalEnvironment(Ray(ref, d)));
+    expectColorNear(env.evalEnvironment(Ray(ref, d)), constant.evalEnvironment(Ray(ref, d)), 1e-5f);
     DirectionSample ds;
     ds.d = d;
     ds.dist = Infinity;

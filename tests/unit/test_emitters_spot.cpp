@@ -10,6 +10,7 @@
 #include <femto/render/emitter.h>
 
 #include "chi2.h"
+#include "expect_color.h"
 #include "render_test_util.h"
 
 using namespace femto;
@@ -49,32 +50,27 @@ Color3f intensityToward(const Emitter& spot, const Vec3f& d, float dist = 3.0f) 
   return value * (ds.dist * ds.dist);
 }
 
-void expectColorNear(const Color3f& actual, const Color3f& expected, float relative = 1e-4f) {
-  for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(actual[c], expected[c], relative * std::max(1.0f, expected[c])) << "channel " << c << " of " << actual;
-}
-
 }  // namespace
 
 TEST(SpotLight, FalloffIsFlatInsideTheBeamAndLinearInAngleToTheCutoff) {
   // Defaults: cutoff 20 degrees, beam width 3/4 of it = 15.
   auto spot = makeSpot();
-  for (float angle : {0.0f, 5.0f, 14.9f}) expectColorNear(intensityToward(*spot, directionAt(angle)), kIntensity);
-  expectColorNear(intensityToward(*spot, directionAt(17.5f)), kIntensity * 0.5f);
-  expectColorNear(intensityToward(*spot, directionAt(19.0f)), kIntensity * 0.2f);
+  for (float angle : {0.0f, 5.0f, 14.9f}) expectColorNear(intensityToward(*spot, directionAt(angle)), kIntensity, 1e-4f);
+  expectColorNear(intensityToward(*spot, directionAt(17.5f)), kIntensity * 0.5f, 1e-4f);
+  expectColorNear(intensityToward(*spot, directionAt(19.0f)), kIntensity * 0.2f, 1e-4f);
   for (float angle : {20.1f, 45.0f, 90.0f, 150.0f}) EXPECT_TRUE(intensityToward(*spot, directionAt(angle)).isBlack());
 
   auto wide = makeSpot(40.0f, 10.0f);
-  expectColorNear(intensityToward(*wide, directionAt(10.0f, 200.0f)), kIntensity);
-  expectColorNear(intensityToward(*wide, directionAt(25.0f, 200.0f)), kIntensity * 0.5f);
-  expectColorNear(intensityToward(*wide, directionAt(32.5f, 200.0f)), kIntensity * 0.25f);
+  expectColorNear(intensityToward(*wide, directionAt(10.0f, 200.0f)), kIntensity, 1e-4f);
+  expectColorNear(intensityToward(*wide, directionAt(25.0f, 200.0f)), kIntensity * 0.5f, 1e-4f);
+  expectColorNear(intensityToward(*wide, directionAt(32.5f, 200.0f)), kIntensity * 0.25f, 1e-4f);
   EXPECT_TRUE(intensityToward(*wide, directionAt(40.5f, 200.0f)).isBlack());
 }
 
 TEST(SpotLight, InverseSquareLawAndDeltaPdf) {
   auto spot = makeSpot();
   Color3f near = intensityToward(*spot, directionAt(5.0f), 1.0f), far = intensityToward(*spot, directionAt(5.0f), 7.0f);
-  expectColorNear(near, far);
+  expectColorNear(near, far, 1e-4f);
   DirectionSample ds;
   spot->sampleDirection(kPosition + directionAt(5.0f) * 2.0f, {0.1f, 0.9f}, ds);
   EXPECT_EQ(ds.pdf, 1.0f);

@@ -12,6 +12,7 @@
 #include <femto/render/texture.h>
 
 #include "li_estimate.h"
+#include "expect_color.h"
 #include "plugin_util.h"
 #include "render_test_util.h"
 
@@ -52,10 +53,6 @@ std::shared_ptr<Texture> makeBitmap(const std::filesystem::path& file, const std
   if (!wrap.empty()) props.setString("wrap_mode", wrap);
   if (raw >= 0) props.setBool("raw", raw != 0);
   return makePlugin<Texture>(ObjectKind::Texture, props);
-}
-
-void expectColorNear(const Color3f& actual, const Color3f& expected, float tolerance = 1e-6f) {
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c << " of " << actual;
 }
 
 class BitmapTextureTest : public ::testing::Test {
