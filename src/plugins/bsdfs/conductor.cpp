@@ -16,7 +16,7 @@
 #include <femto/core/spelling.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -49,9 +49,7 @@ class ConductorBSDF final : public BSDF {
     bs = BSDFSample();
     const float cosThetaI = Frame::cosTheta(si.wi);
     if (cosThetaI <= 0.0f) return Color3f(0.0f);
-    bs.wo = reflect(si.wi, Vec3f(0, 0, 1));
-    bs.pdf = 1.0f;
-    bs.sampledFlags = BSDFFlags::DeltaReflection;
+    sampleDeltaReflection(si, 1.0f, bs);
     return reflectance_->eval(si) * fresnelConductor(cosThetaI, eta_, k_);
   }
 

@@ -20,7 +20,7 @@
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -28,9 +28,8 @@ namespace femto {
 class DielectricBSDF final : public BSDF {
  public:
   explicit DielectricBSDF(const Properties& props)
-      : intIOR_(iorFromProperties(props, "int_ior", *lookupIOR("bk7"))),
-        extIOR_(iorFromProperties(props, "ext_ior", *lookupIOR("air"))),
-        eta_(intIOR_ / extIOR_),
+      : iors_(IORPair::read(props, *lookupIOR("bk7"))),
+        eta_(iors_.eta()),
         reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
         transmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {}
 
@@ -43,9 +42,7 @@ class DielectricBSDF final : public BSDF {
     float cosThetaT;
     const float r = fresnelDielectric(cosThetaI, eta_, cosThetaT);
     if (u1 < r) {  // reflect, with probability R: weight R / R
-      bs.wo = reflect(si.wi, Vec3f(0, 0, 1));
-      bs.pdf = r;
-      bs.sampledFlags = BSDFFlags::DeltaReflection;
+      sampleDeltaReflection(si, r, bs);
       return reflectance_->eval(si);
     }
     // Refract, with probability 1 - R: weight (1 - R) / (1 - R), times the radiance scaling.
@@ -64,12 +61,13 @@ class DielectricBSDF final : public BSDF {
   float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
 
   std::string toString() const override {
-    return str("DielectricBSDF[int_ior=", intIOR_, ", ext_ior=", extIOR_, ", specular_reflectance=",
+    return str("DielectricBSDF[", iors_.toString(), ", specular_reflectance=",
                reflectance_->toString(), ", specular_transmittance=", transmittance_->toString(), "]");
   }
 
  private:
-  float intIOR_, extIOR_, eta_;
+  IORPair iors_;
+  float eta_;
   std::shared_ptr<Texture> reflectance_, transmittance_;
 };
 

@@ -29,7 +29,7 @@
 #include <femto/math/warp.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -37,9 +37,8 @@ namespace femto {
 class PlasticBSDF final : public BSDF {
  public:
   explicit PlasticBSDF(const Properties& props)
-      : intIOR_(iorFromProperties(props, "int_ior", *lookupIOR("polypropylene"))),
-        extIOR_(iorFromProperties(props, "ext_ior", *lookupIOR("air"))),
-        eta_(intIOR_ / extIOR_),
+      : iors_(IORPair::read(props, *lookupIOR("polypropylene"))),
+        eta_(iors_.eta()),
         specular_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
         diffuse_(textureOrColor(props, "diffuse_reflectance", Color3f(0.5f))),
         nonlinear_(props.getBool("nonlinear", false)),
@@ -61,9 +60,7 @@ class PlasticBSDF final : public BSDF {
     const float r = fresnelDielectric(cosThetaI, eta_);
     const float pSpecular = specularProbability(r);
     if (u1 < pSpecular) {
-      bs.wo = reflect(si.wi, Vec3f(0, 0, 1));
-      bs.pdf = pSpecular;
-      bs.sampledFlags = BSDFFlags::DeltaReflection;
+      sampleDeltaReflection(si, pSpecular, bs);
       return specular_->eval(si) * (r / pSpecular);
     }
     bs.wo = warp::squareToCosineHemisphere(u2);
@@ -94,7 +91,7 @@ class PlasticBSDF final : public BSDF {
   }
 
   std::string toString() const override {
-    return str("PlasticBSDF[int_ior=", intIOR_, ", ext_ior=", extIOR_, ", specular_reflectance=", specular_->toString(),
+    return str("PlasticBSDF[", iors_.toString(), ", specular_reflectance=", specular_->toString(),
                ", diffuse_reflectance=", diffuse_->toString(), ", nonlinear=", nonlinear_ ? "true" : "false", "]");
   }
 
@@ -105,7 +102,8 @@ class PlasticBSDF final : public BSDF {
     return s + d > 0.0f ? s / (s + d) : 0.0f;
   }
 
-  float intIOR_, extIOR_, eta_;
+  IORPair iors_;
+  float eta_;
   std::shared_ptr<Texture> specular_, diffuse_;
   bool nonlinear_;
   float fdrInternal_;

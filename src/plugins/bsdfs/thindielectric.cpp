@@ -16,7 +16,7 @@
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -24,9 +24,8 @@ namespace femto {
 class ThinDielectricBSDF final : public BSDF {
  public:
   explicit ThinDielectricBSDF(const Properties& props)
-      : intIOR_(iorFromProperties(props, "int_ior", *lookupIOR("bk7"))),
-        extIOR_(iorFromProperties(props, "ext_ior", *lookupIOR("air"))),
-        eta_(intIOR_ / extIOR_),
+      : iors_(IORPair::read(props, *lookupIOR("bk7"))),
+        eta_(iors_.eta()),
         reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
         transmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {}
 
@@ -37,9 +36,7 @@ class ThinDielectricBSDF final : public BSDF {
     bs = BSDFSample();
     const float r = paneReflectance(std::abs(Frame::cosTheta(si.wi)));
     if (u1 < r) {
-      bs.wo = reflect(si.wi, Vec3f(0, 0, 1));
-      bs.pdf = r;
-      bs.sampledFlags = BSDFFlags::DeltaReflection;
+      sampleDeltaReflection(si, r, bs);
       return reflectance_->eval(si);
     }
     // Straight through: both faces refract, and undo each other's radiance scaling.
@@ -53,7 +50,7 @@ class ThinDielectricBSDF final : public BSDF {
   float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
 
   std::string toString() const override {
-    return str("ThinDielectricBSDF[int_ior=", intIOR_, ", ext_ior=", extIOR_, ", specular_reflectance=",
+    return str("ThinDielectricBSDF[", iors_.toString(), ", specular_reflectance=",
                reflectance_->toString(), ", specular_transmittance=", transmittance_->toString(), "]");
   }
 
@@ -66,7 +63,8 @@ class ThinDielectricBSDF final : public BSDF {
     return r + t * t * r / (1.0f - r * r);
   }
 
-  float intIOR_, extIOR_, eta_;
+  IORPair iors_;
+  float eta_;
   std::shared_ptr<Texture> reflectance_, transmittance_;
 };
 
