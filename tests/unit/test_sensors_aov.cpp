@@ -178,3 +178,42 @@ TEST(AOVIntegrator, BadListsAreNamed) {
   message = errorMessageOf([] { aovPlaneScene("depth"); });
   EXPECT_NE(message.find("expected \"name:type\""), std::string::npos) << message;
 }
+
+TEST(MomentIntegrator, MeanAndSecondMomentPerNestedIntegrator) {
+  // Inside a closed black sphere emitting Le, a path tracer of max_depth 1
+  // sees exactly Le (second moment Le^2); `direct` with a grey BSDF in the
+  // same furnace has noise, so its second moment exceeds the squared mean.
+  const Color3f Le(1.0f, 2.0f, 0.5f);
+  auto scene = loadStrict(str(R"(<scene version="3.0.0">
+  <integrator type="moment">
+    <integrator type="path"><integer name="max_depth" value="1"/></integrator>
+    <integrator type="direct" id="dl"/>
+  </integrator>
+  <sensor type="perspective">
+    <float name="fov" value="60"/>
+    <sampler type="independent"><integer name="sample_count" value="8"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="sphere">
+    <boolean name="flip_normals" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
+  </shape>
+</scene>)"));
+  std::vector<std::string> names;
+  Bitmap image = renderToImage(*scene, "moment", names);
+  ASSERT_EQ(image.channels, 12);
+  std::map<std::string, int> at;
+  for (size_t i = 0; i < names.size(); ++i) at[names[i]] = int(i);
+  for (const char* n : {"integrator_0.R", "integrator_0.m2.B", "dl.G", "dl.m2.R"})
+    ASSERT_TRUE(at.count(n)) << "missing channel " << n;
+  const char* rgbNames[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    const float* px = image.pixel(1, 2);
+    std::string ch = rgbNames[c];
+    EXPECT_NEAR(px[at["integrator_0." + ch]], Le[c], 1e-4f * Le[c]);
+    EXPECT_NEAR(px[at["integrator_0.m2." + ch]], Le[c] * Le[c], 1e-4f * Le[c] * Le[c]);
+    float mean = px[at["dl." + ch]];
+    EXPECT_GT(px[at["dl.m2." + ch]], mean * mean);
+  }
+}

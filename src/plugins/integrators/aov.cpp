@@ -29,8 +29,8 @@
 #include <unordered_map>
 
 #include <femto/core/plugin.h>
-#include <femto/image/image_io.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/channel_output.h>
 #include <femto/render/integrator.h>
 #include <femto/render/render_loop.h>
 #include <femto/render/scene.h>
@@ -82,7 +82,7 @@ class AOVIntegrator final : public Integrator {
     };
     ImageBlock result(film.cropOffset(), film.cropSize(), film.filter(), channels);
     RenderStats stats = renderChannelTiles(scene, options, sampleFn, result);
-    if (!options.output.empty()) develop(result, film, options.output);
+    if (!options.output.empty()) developChannels(result, film, channelNames_, options.output);
     return stats;
   }
 
@@ -154,16 +154,6 @@ class AOVIntegrator final : public Integrator {
       }
     }
     return out;
-  }
-
-  void develop(const ImageBlock& image, const Film& film, std::filesystem::path path) const {
-    const int channels = int(channelNames_.size());
-    Bitmap bitmap(film.cropSize().x, film.cropSize().y, channels);
-    for (int y = 0; y < film.cropSize().y; ++y)
-      for (int x = 0; x < film.cropSize().x; ++x)
-        image.values(Point2i(film.cropOffset().x + x, film.cropOffset().y + y), bitmap.pixel(x, y));
-    path.replace_extension(".exr");
-    writeEXR(path, bitmap, channelNames_);
   }
 
   std::shared_ptr<SamplingIntegrator> inner_;
