@@ -309,6 +309,19 @@ TEST(TwoSidedBSDF, BackSideMirrorsTheFrontOrUsesTheSecondBSDF) {
   expectAlbedoAtMost(albedo(*two, back, 20000), 1.0f);
 }
 
+TEST(TwoSidedBSDF, WrapsAMaskAndKeepsPassThroughStraight) {
+  auto mask = make("mask", [&](Properties& p) { p.setObject("bsdf", makeDiffuse(Color3f(0.5f))); });
+  auto bsdf = make("twosided", [&](Properties& p) { p.setObject("_arg_0", mask); });
+  for (float z : {0.6f, -0.6f}) {
+    SurfaceInteraction si = localInteraction({0.3f, -0.4f, z});
+    BSDFSample bs;
+    EXPECT_EQ(bsdf->sample(si, 0.99f, {0.5f, 0.5f}, bs), Color3f(1.0f));  // u1 >= opacity: pass through
+    EXPECT_EQ(bs.sampledFlags, uint32_t(BSDFFlags::Null));
+    EXPECT_EQ(bs.wo, -si.wi);
+    expectAlbedoNear(albedo(*bsdf, si, 20000), Color3f(0.5f + 0.5f * 0.5f));  // both sides alike
+  }
+}
+
 // ---- null and mask -----------------------------------------------------
 
 TEST(NullBSDF, PassesLightStraightThrough) {

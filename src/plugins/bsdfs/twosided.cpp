@@ -5,7 +5,9 @@
 // plane (z -> -z), handed to the nested BSDF as if they were on its front,
 // and the sampled direction mirrored back (Mitsuba 3's `twosided`).
 // Transmitting BSDFs cannot be nested: they are two-sided already, and
-// mirroring would turn their transmission into reflection.
+// their interior and exterior differ. Pass-through (`null`, `mask`) may be:
+// mirroring commutes with wo = -wi, so it stays pass-through (Mitsuba
+// refuses it; accepting it lets twosided wrap a mask as well as the reverse).
 //
 // | name     | type            | default | meaning                                              | unit |
 // |----------|-----------------|---------|------------------------------------------------------|------|
@@ -29,7 +31,7 @@ class TwoSidedBSDF final : public BSDF {
     front_ = std::dynamic_pointer_cast<BSDF>(nested.front());
     back_ = std::dynamic_pointer_cast<BSDF>(nested.back());
     for (const auto& bsdf : {front_, back_})
-      if (bsdf->flags() & BSDFFlags::Transmission)
+      if (bsdf->flags() & BSDFFlags::Transmission & ~uint32_t(BSDFFlags::Null))
         throw Error(props.location(), str("\"twosided\" cannot wrap a transmitting BSDF (", bsdf->toString(),
                                           "); it scatters on both sides already"));
   }
