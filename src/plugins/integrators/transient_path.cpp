@@ -28,17 +28,21 @@
 // Depth counts path segments, as in Mitsuba: max_depth = 1 gives only
 // emitters seen directly, 2 adds single scattering and direct illumination.
 //
-// | name          | type    | default | meaning                                            | unit |
-// |---------------|---------|---------|----------------------------------------------------|------|
-// | max_depth     | integer | -1      | longest path in segments (-1: no limit)            | -    |
-// | rr_depth      | integer | 5       | depth from which Russian roulette may end paths    | -    |
-// | hide_emitters | boolean | false   | emitters seen directly by the camera appear black  | -    |
-// | observer_time | boolean | true    | include the camera segment in the OPL              | -    |
-// | version       | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
+// | name            | type    | default | meaning                                            | unit |
+// |-----------------|---------|---------|----------------------------------------------------|------|
+// | max_depth       | integer | -1      | longest path in segments (-1: no limit)            | -    |
+// | rr_depth        | integer | 5       | depth from which Russian roulette may end paths    | -    |
+// | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
+// | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
+// | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
+// | temporal_filter | string  | "box"   | mitransient: how OPLs fall into bins; only "box"   | -    |
+// | gaussian_stddev | float   | 2       | mitransient: read for temporal_filter="gaussian"   | bins |
+// | version         | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
 #include <cmath>
 
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/direct_lighting.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
@@ -47,12 +51,6 @@
 
 namespace femto {
 namespace {
-
-/// Power heuristic with beta = 2 (Veach 1997, eq. 9.13), one sample per strategy.
-float powerHeuristic(float pdfA, float pdfB) {
-  float a = pdfA * pdfA, b = pdfB * pdfB;
-  return a > 0.0f ? a / (a + b) : 0.0f;
-}
 
 /// Index-matched boundaries crossed in a row before a path is abandoned.
 constexpr int kMaxPassThrough = 256;
@@ -68,10 +66,9 @@ struct PathState {
   Color3f throughput{1.0f};
   float etaScale = 1.0f;       // product of squared relative IORs (for Russian roulette)
   int depth = 0;               // segments so far
-  // The last scattering vertex, for weighting emission that phase/BSDF sampling finds.
-  Point3f prevP;
-  float prevPdf = 1.0f;
-  bool prevDelta = true;       // camera rays count as delta: no other strategy finds what they see
+  // The last scattering vertex, for weighting emission that phase/BSDF sampling
+  // finds (a camera ray counts as delta: no other strategy finds what it sees).
+  ScatterOrigin prev;
 };
 
 }  // namespace
@@ -85,6 +82,17 @@ class TransientPathIntegrator final : public TransientIntegrator {
         observerTime_(props.getBool("observer_time", true)) {
     if (maxDepth_ < -1) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth_));
     if (rrDepth_ <= 0) props.raise("rr_depth", str("must be at least 1, got ", rrDepth_));
+    // mitransient's spelling: camera_unwarp = true removes the camera segment.
+    if (props.has("camera_unwarp")) {
+      if (props.has("observer_time"))
+        props.raise("camera_unwarp", "give either observer_time or camera_unwarp (its opposite), not both");
+      observerTime_ = !props.getBool("camera_unwarp");
+    }
+    std::string temporalFilter = props.getString("temporal_filter", "box");
+    props.getFloat("gaussian_stddev", 2.0f);
+    if (temporalFilter != "box")
+      props.raise("temporal_filter", str("\"", temporalFilter, "\" is not supported: contributions fall into the bin ",
+                                         "containing their OPL (\"box\")"));
     props.getInt("version", 0);  // lajolla's volpath scenes select their homework variant with it
   }
 
@@ -94,7 +102,7 @@ class TransientPathIntegrator final : public TransientIntegrator {
     PathState s;
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
-    s.segmentStart = s.prevP = cameraRay.o;
+    s.segmentStart = s.prev.p = cameraRay.o;
     for (int passThrough = 0; passThrough < kMaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
@@ -151,39 +159,17 @@ class TransientPathIntegrator final : public TransientIntegrator {
   }
 
   /// Emission of the surface the path reached, MIS-weighted against emitter
-  /// sampling at the previous scattering vertex.
+  /// sampling at the previous scattering vertex (shared with `path`).
   void recordEmission(const Scene& scene, const PathState& s, const SurfaceInteraction& si,
                       RadianceRecorder& recorder) const {
-    const Emitter* emitter = si.emitter();
-    if (!emitter || (hideEmitters_ && s.depth == 0)) return;
-    Color3f Le = si.Le(-s.ray.d);
-    if (Le.isBlack()) return;
-    float weight = 1.0f;
-    if (!s.prevDelta) {
-      DirectionSample ds;
-      ds.p = si.p;
-      ds.n = si.n;
-      ds.d = s.ray.d;
-      ds.dist = distance(s.prevP, si.p);
-      weight = powerHeuristic(s.prevPdf, scene.pdfEmitterDirection(s.prevP, ds, emitter));
-    }
-    recorder.add(s.opl, s.throughput * Le * weight);
+    if (!si.emitter() || (hideEmitters_ && s.depth == 0)) return;
+    Color3f Le = emissionFound(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev);
+    if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
   }
 
   void recordEnvironment(const Scene& scene, const PathState& s, RadianceRecorder& recorder) const {
-    for (const Emitter* emitter : scene.environmentEmitters()) {
-      Color3f Le = emitter->evalEnvironment(s.ray);
-      if (Le.isBlack()) continue;
-      float weight = 1.0f;
-      if (!s.prevDelta) {
-        DirectionSample ds;
-        ds.d = s.ray.d;
-        ds.dist = Infinity;
-        ds.p = s.prevP + s.ray.d;  // only the direction matters for distant emitters
-        weight = powerHeuristic(s.prevPdf, scene.pdfEmitterDirection(s.prevP, ds, emitter));
-      }
-      recorder.add(s.opl, s.throughput * Le * weight);
-    }
+    Color3f Le = environmentFound(scene, s.ray, s.prev);
+    if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
   }
 
   /// Next-event estimation from vertex `ref` (a surface, or a medium point
@@ -203,7 +189,7 @@ class TransientPathIntegrator final : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = ds.delta ? 1.0f : powerHeuristic(ds.pdf, pdf);
+    float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
     recorder.add(s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight);
   }
 
@@ -228,9 +214,9 @@ class TransientPathIntegrator final : public TransientIntegrator {
     float weight = phase.sample(wi, sampler.next2D(), wo, pdf);
     if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
     s.throughput *= weight;
-    s.prevP = p;
-    s.prevPdf = pdf;
-    s.prevDelta = false;
+    s.prev.p = p;
+    s.prev.bsdfPdf = pdf;
+    s.prev.delta = false;
     s.ray = Ray(p, wo);
     return russianRoulette(s, sampler);
   }
@@ -254,9 +240,9 @@ class TransientPathIntegrator final : public TransientIntegrator {
     s.etaScale *= bs.eta * bs.eta;
     s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
     s.medium = mediumAfter(si, wo, s.medium);
-    s.prevP = si.p;
-    s.prevPdf = bs.pdf;
-    s.prevDelta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
+    s.prev.p = si.p;
+    s.prev.bsdfPdf = bs.pdf;
+    s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
     s.ray = si.spawnRay(wo);
     return russianRoulette(s, sampler);
   }
