@@ -150,6 +150,47 @@ inline GridDomain<Vec3f> sphericalDomain(int nTheta, int nPhi) {
   return d;
 }
 
+/// (theta, phi) grid over the sphere whose theta grid has lines at the given
+/// angles (radians, in (0, pi)): the ranges between them get cells in
+/// proportion to their length, at least one each. Densities that jump along
+/// a circle of constant theta (a BSDF at the horizon, or where a refracted
+/// lobe ends) are then integrated without the large error the midpoint rule
+/// makes in a cell the jump crosses.
+inline GridDomain<Vec3f> sphericalDomainWithBreaks(std::vector<double> breaks, int nTheta, int nPhi) {
+  breaks.push_back(0.0);
+  breaks.push_back(Pi);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double a, double b) { return b - a < 1e-6; }), breaks.end());
+  // Grid-line positions (in cells) of the breaks.
+  std::vector<double> lines{0.0};
+  for (size_t k = 1; k < breaks.size(); ++k)
+    lines.push_back(lines.back() + std::max(1.0, std::round(nTheta * (breaks[k] - breaks[k - 1]) / Pi)));
+  GridDomain<Vec3f> d = sphericalDomain(int(lines.back()), nPhi);
+  d.x1 = lines.back();
+  auto piece = [lines](double x) {
+    return std::min(size_t(std::upper_bound(lines.begin(), lines.end(), x) - lines.begin()), lines.size() - 1) - 1;
+  };
+  auto thetaOf = [=](double x) {
+    size_t k = piece(x);
+    return breaks[k] + (x - lines[k]) / (lines[k + 1] - lines[k]) * (breaks[k + 1] - breaks[k]);
+  };
+  auto sphere = sphericalDomain(1, nPhi);
+  d.fromParams = [=](double x, double phi) { return sphere.fromParams(thetaOf(x), phi); };
+  d.toParams = [=](const Vec3f& v) -> std::optional<Point2f> {
+    std::optional<Point2f> p = sphere.toParams(v);
+    if (!p) return p;
+    size_t k = std::min(size_t(std::upper_bound(breaks.begin(), breaks.end(), double(p->x)) - breaks.begin()),
+                        breaks.size() - 1) - 1;
+    double x = lines[k] + (p->x - breaks[k]) / (breaks[k + 1] - breaks[k]) * (lines[k + 1] - lines[k]);
+    return Point2f(float(x), p->y);
+  };
+  d.jacobian = [=](double x, double) {
+    size_t k = piece(x);
+    return std::sin(thetaOf(x)) * (breaks[k + 1] - breaks[k]) / (lines[k + 1] - lines[k]);
+  };
+  return d;
+}
+
 /// Planar grid over [x0, x1] x [y0, y1]; value = the point itself.
 inline GridDomain<Point2f> planarDomain(double x0, double x1, double y0, double y1, int nx, int ny) {
   GridDomain<Point2f> d;
@@ -184,21 +225,26 @@ std::vector<double> integrateCells(const GridDomain<Value>& d, const std::functi
 }
 
 /// Draw `sampleCount` samples with `sample(u)` (u uniform in [0,1)^2), and
-/// test them against `pdf` over the grid `d`. A sample outside the domain
-/// fails the test, and so do samples where `pdf` is zero, beyond a tiny
-/// fraction allowed for round-off at the boundary of the support.
+/// test them against `pdf` over the grid `d`. A sampler may fail (nullopt):
+/// such samples are not counted, so `pdf` must then integrate to the
+/// probability of success (as a BSDF's pdf does when some sampled
+/// directions are rejected, e.g. reflections below the horizon). A sample
+/// outside the domain fails the test, and so do samples where `pdf` is zero,
+/// beyond a tiny fraction allowed for round-off at the boundary of the support.
 template <typename Value>
-ChiSquareResult testSampler(const GridDomain<Value>& d, const std::function<Value(const Point2f&)>& sample,
-                            const std::function<double(const Value&)>& pdf, int sampleCount = 1000000,
-                            int integrationSubdivisions = 16, uint64_t seed = 1) {
+ChiSquareResult testSamplerAllowingFailures(const GridDomain<Value>& d,
+                                            const std::function<std::optional<Value>(const Point2f&)>& sample,
+                                            const std::function<double(const Value&)>& pdf, int sampleCount = 1000000,
+                                            int integrationSubdivisions = 16, uint64_t seed = 1) {
   std::vector<double> observed(size_t(d.nx) * d.ny, 0.0);
   PCG32 rng(seed, 7);
   int impossible = 0;
   for (int k = 0; k < sampleCount; ++k) {
     Point2f u(rng.nextFloat(), rng.nextFloat());
-    Value value = sample(u);
-    if (!(pdf(value) > 0.0)) ++impossible;
-    std::optional<Point2f> p = d.toParams(value);
+    std::optional<Value> value = sample(u);
+    if (!value) continue;
+    if (!(pdf(*value) > 0.0)) ++impossible;
+    std::optional<Point2f> p = d.toParams(*value);
     if (!p || !(p->x >= d.x0 && p->x <= d.x1 && p->y >= d.y0 && p->y <= d.y1)) {
       ChiSquareResult r;
       std::ostringstream os;
@@ -220,6 +266,17 @@ ChiSquareResult testSampler(const GridDomain<Value>& d, const std::function<Valu
   std::vector<double> expected = integrateCells(d, pdf, integrationSubdivisions);
   for (double& e : expected) e *= sampleCount;
   return chiSquareTest(observed, expected);
+}
+
+/// As testSamplerAllowingFailures, for a sampler that always succeeds.
+template <typename Value>
+ChiSquareResult testSampler(const GridDomain<Value>& d, const std::function<Value(const Point2f&)>& sample,
+                            const std::function<double(const Value&)>& pdf, int sampleCount = 1000000,
+                            int integrationSubdivisions = 16, uint64_t seed = 1) {
+  std::function<std::optional<Value>(const Point2f&)> always = [&](const Point2f& u) {
+    return std::optional<Value>(sample(u));
+  };
+  return testSamplerAllowingFailures(d, always, pdf, sampleCount, integrationSubdivisions, seed);
 }
 
 }  // namespace femto::test
