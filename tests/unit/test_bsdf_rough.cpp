@@ -350,6 +350,12 @@ TEST(RoughBSDFs, BadParametersAreReportedAtTheirLine) {
   std::string message = errorMessageOf([&] { createPlugin<BSDF>(ObjectKind::BSDF, both); });
   EXPECT_NE(message.find("scene.xml:3"), std::string::npos) << message;
 
+  Properties lone("roughconductor");
+  lone.setColor("eta", Color3f(0.2f), at(8));
+  message = errorMessageOf([&] { createPlugin<BSDF>(ObjectKind::BSDF, lone); });
+  EXPECT_NE(message.find("scene.xml:8"), std::string::npos) << message;
+  EXPECT_NE(message.find("together"), std::string::npos) << message;
+
   Properties unknown("roughconductor");
   unknown.setString("material", "Gold", at(5));
   message = errorMessageOf([&] { createPlugin<BSDF>(ObjectKind::BSDF, unknown); });

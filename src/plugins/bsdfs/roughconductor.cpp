@@ -13,7 +13,7 @@
 // | alpha_u, alpha_v     | float          | 0.1      | anisotropic roughness along tangent / bitangent (instead of alpha) | - |
 // | sample_visible       | boolean        | true     | sample visible normals (Heitz 2018 / Heitz & d'Eon 2014)  | -    |
 // | material             | string         | none     | named conductor ("Au", "Cu", ...; "none": perfect mirror) | -    |
-// | eta, k               | rgb            | 0, 1     | complex index of refraction eta + ik (instead of material) | -   |
+// | eta, k               | rgb or float   | -        | complex index of refraction eta + ik (together, instead of material) | - |
 // | specular_reflectance | rgb or texture | 1        | factor on the reflectance (not physical; for artists)     | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
@@ -70,7 +70,8 @@ class RoughConductorBSDF final : public BSDF {
   }
 
   std::string toString() const override {
-    return str("RoughConductorBSDF[distribution=", distribution_.toString(), ", eta=", ior_.eta, ", k=", ior_.k,
+    return str("RoughConductorBSDF[material=", ior_.material, ", eta=", ior_.eta, ", k=", ior_.k,
+               ", distribution=", distribution_.toString(),
                ", specular_reflectance=", specularReflectance_->toString(), "]");
   }
 

@@ -5,30 +5,35 @@
 #include <femto/render/fresnel.h>
 
 namespace femto {
+namespace {
+
+/// A non-negative colour parameter (eta or k), with file:line on error.
+Color3f nonNegativeColor(const Properties& props, const std::string& name) {
+  Color3f c = props.getColor(name);
+  if (!c.isValid()) props.raise(name, str("must be finite and not negative, got ", c));
+  return c;
+}
+
+}  // namespace
 
 ConductorIOR conductorIORFromProperties(const Properties& props) {
   ConductorIOR ior;
-  std::string material = props.getString("material", "none");
-  bool explicitIOR = props.has("eta") || props.has("k");
-  if (explicitIOR && material != "none")
-    props.raise("material", str("give either \"material\" or \"eta\" and \"k\", not both"));
-  if (!explicitIOR) {
-    auto named = lookupConductor(material);
-    if (!named)
-      props.raise("material", str("unknown conductor \"", material, "\"", didYouMean(material, knownConductorNames()),
-                                  "; give a known name or \"eta\" and \"k\""));
-    ior.eta = named->first;
-    ior.k = named->second;
+  const bool hasEta = props.has("eta"), hasK = props.has("k");
+  if (hasEta || hasK) {
+    if (props.has("material")) props.raise("material", "give either a material name or eta and k, not both");
+    if (!hasEta || !hasK) props.raise(hasEta ? "eta" : "k", "eta and k must be given together");
+    ior.material = "custom";
+    ior.eta = nonNegativeColor(props, "eta");
+    ior.k = nonNegativeColor(props, "k");
     return ior;
   }
-  ior.eta = props.getColor("eta", Color3f(0.0f));
-  ior.k = props.getColor("k", Color3f(1.0f));
-  auto check = [&](const char* name, const Color3f& value) {
-    if (!value.isValid())
-      props.raise(name, str("the complex index of refraction needs finite values >= 0, got ", value));
-  };
-  check("eta", ior.eta);
-  check("k", ior.k);
+  ior.material = props.getString("material", "none");
+  auto constants = lookupConductor(ior.material);
+  if (!constants)
+    props.raise("material", str("unknown conductor \"", ior.material, "\"",
+                                didYouMean(ior.material, knownConductorNames()), "; give eta and k for other metals"));
+  ior.eta = constants->first;
+  ior.k = constants->second;
   return ior;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // The complex index of refraction of a conductor as Mitsuba's conductor BSDFs
 // take it: a named `material` or explicit `eta` and `k`. Shared by every
-// plugin with a metal boundary (conductor, roughconductor).
+// plugin with a metal boundary (conductor, roughconductor), so they accept
+// and refuse the same parameters.
+#include <string>
+
 #include <femto/render/spectrum.h>
 
 namespace femto {
@@ -9,13 +12,14 @@ namespace femto {
 class Properties;
 
 struct ConductorIOR {
-  Color3f eta{0.0f}, k{1.0f};  // relative to the exterior; (0, 1) reflects everything
+  std::string material = "none";  // the table name, or "custom" for explicit eta and k
+  Color3f eta{0.0f}, k{1.0f};     // relative to the exterior; (0, 1) reflects everything
 };
 
 /// `material` (a name lookupConductor knows; default "none", a perfect
-/// mirror, as in Mitsuba 3) or `eta` and `k` (<rgb> or <float>; defaults 0
-/// and 1), not both. Unknown names, both forms together and negative values
-/// are errors naming the parameter's file:line.
+/// mirror, as in Mitsuba 3) or `eta` and `k` together (<rgb> or <float>),
+/// not both. Unknown names, a lone eta or k, material with eta/k and negative
+/// values are errors naming the parameter's file:line.
 ConductorIOR conductorIORFromProperties(const Properties& props);
 
 }  // namespace femto
