@@ -342,6 +342,20 @@ TEST(RoughBSDFs, StayFiniteAtTinyRoughnessAndGrazingAngles) {
       }
 }
 
+TEST(RoughConductor, ExteriorIndexLowersTheReflectance) {
+  // Mitsuba 0.6's extEta: gold under water reflects less than gold in air.
+  auto gold = [](const char* exterior) {
+    return makeBSDF({"roughconductor", "ggx", 0.2f, -1}, [&](Properties& p) {
+      p.setString("material", "Au");
+      if (exterior) p.setString("ext_eta", exterior);
+    });
+  };
+  SurfaceInteraction si = localInteraction(direction(30, 0));
+  Vec3f wo = direction(30, 180);
+  Color3f inAir = gold(nullptr)->eval(si, wo), underWater = gold("water")->eval(si, wo);
+  for (int c = 0; c < 3; ++c) EXPECT_LT(underWater[c], inAir[c]);
+}
+
 TEST(RoughBSDFs, BadParametersAreReportedAtTheirLine) {
   auto at = [](int line) { return SourceLocation{"scene.xml", line}; };
   Properties both("roughconductor");

@@ -14,6 +14,7 @@
 // | sample_visible       | boolean        | true     | sample visible normals (Heitz 2018 / Heitz & d'Eon 2014)  | -    |
 // | material             | string         | none     | named conductor ("Au", "Cu", ...; "none": perfect mirror) | -    |
 // | eta, k               | rgb or float   | -        | complex index of refraction eta + ik (together, instead of material) | - |
+// | ext_eta              | float or string | 1       | exterior index (Mitsuba 0.6's extEta); eta and k are relative to it | - |
 // | specular_reflectance | rgb or texture | 1        | factor on the reflectance (not physical; for artists)     | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>

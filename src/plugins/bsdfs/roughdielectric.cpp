@@ -32,6 +32,7 @@
 #include <femto/render/fresnel.h>
 #include <femto/render/ior.h>
 #include <femto/render/microfacet.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -42,14 +43,13 @@ class RoughDielectricBSDF final : public BSDF {
       : distribution_(MicrofacetDistribution::fromProperties(props)),
         specularReflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
         specularTransmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {
-    float intIOR = iorFromProperties(props, "int_ior", *lookupIOR("bk7"));
-    float extIOR = iorFromProperties(props, "ext_ior", *lookupIOR("air"));
+    IORPair ior = IORPair::read(props, *lookupIOR("bk7"));
     // Equal indices make the refracted lobe a delta (m ~ i - o vanishes):
     // not a rough interface at all.
-    if (std::abs(intIOR - extIOR) < 1e-6f * extIOR)
-      props.raise("int_ior", str("int_ior and ext_ior are equal (", intIOR,
+    if (std::abs(ior.intIOR - ior.extIOR) < 1e-6f * ior.extIOR)
+      props.raise("int_ior", str("int_ior and ext_ior are equal (", ior.intIOR,
                                  "): an index-matched boundary does not refract; use a \"null\" BSDF"));
-    eta_ = intIOR / extIOR;
+    eta_ = ior.eta();
   }
 
   uint32_t flags() const override { return BSDFFlags::GlossyReflection | BSDFFlags::GlossyTransmission; }

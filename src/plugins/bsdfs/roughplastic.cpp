@@ -43,6 +43,7 @@
 #include <femto/render/fresnel.h>
 #include <femto/render/ior.h>
 #include <femto/render/microfacet.h>
+#include <femto/render/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {
@@ -88,9 +89,7 @@ class RoughPlasticBSDF final : public BSDF {
         diffuseReflectance_(textureOrColor(props, "diffuse_reflectance", Color3f(0.5f))),
         specularReflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
         nonlinear_(props.getBool("nonlinear", false)) {
-    float intIOR = iorFromProperties(props, "int_ior", *lookupIOR("polypropylene"));
-    float extIOR = iorFromProperties(props, "ext_ior", *lookupIOR("air"));
-    eta_ = intIOR / extIOR;
+    eta_ = IORPair::read(props, *lookupIOR("polypropylene")).eta();
 
     MicrofacetDistribution visible = distribution_.withSampleVisible(true);
     std::array<float, TableSize> internalReflectance;

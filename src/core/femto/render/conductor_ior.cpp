@@ -3,6 +3,7 @@
 #include <femto/core/properties.h>
 #include <femto/core/spelling.h>
 #include <femto/render/fresnel.h>
+#include <femto/render/ior.h>
 
 namespace femto {
 namespace {
@@ -10,13 +11,12 @@ namespace {
 /// A non-negative colour parameter (eta or k), with file:line on error.
 Color3f nonNegativeColor(const Properties& props, const std::string& name) {
   Color3f c = props.getColor(name);
-  if (!c.isValid()) props.raise(name, str("must be finite and not negative, got ", c));
+  if (!c.isValid()) props.raise(name, str("must not be negative, got ", c));
   return c;
 }
 
-}  // namespace
-
-ConductorIOR conductorIORFromProperties(const Properties& props) {
+/// The optical constants before the exterior's index is divided out.
+ConductorIOR readOpticalConstants(const Properties& props) {
   ConductorIOR ior;
   const bool hasEta = props.has("eta"), hasK = props.has("k");
   if (hasEta || hasK) {
@@ -34,6 +34,16 @@ ConductorIOR conductorIORFromProperties(const Properties& props) {
                                 didYouMean(ior.material, knownConductorNames()), "; give eta and k for other metals"));
   ior.eta = constants->first;
   ior.k = constants->second;
+  return ior;
+}
+
+}  // namespace
+
+ConductorIOR conductorIORFromProperties(const Properties& props) {
+  ConductorIOR ior = readOpticalConstants(props);
+  const float extEta = iorFromProperties(props, "ext_eta", 1.0f);
+  ior.eta = ior.eta / extEta;
+  ior.k = ior.k / extEta;
   return ior;
 }
 

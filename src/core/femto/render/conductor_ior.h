@@ -18,8 +18,11 @@ struct ConductorIOR {
 
 /// `material` (a name lookupConductor knows; default "none", a perfect
 /// mirror, as in Mitsuba 3) or `eta` and `k` together (<rgb> or <float>),
-/// not both. Unknown names, a lone eta or k, material with eta/k and negative
-/// values are errors naming the parameter's file:line.
+/// not both; both are then divided by `ext_eta` (Mitsuba 0.6's extEta, the
+/// exterior's index: a number or a name from render/ior.h; default 1), since
+/// the Fresnel equations depend on the index relative to the exterior.
+/// Unknown names, a lone eta or k, material with eta/k and negative values
+/// are errors naming the parameter's file:line.
 ConductorIOR conductorIORFromProperties(const Properties& props);
 
 }  // namespace femto
