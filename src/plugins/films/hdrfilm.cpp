@@ -17,7 +17,6 @@
 // | (nested rfilter)   | rfilter | gaussian  | pixel reconstruction filter                                   |
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
-#include <femto/image/image_io.h>
 #include <femto/render/film.h>
 
 namespace femto {
@@ -39,18 +38,7 @@ class HDRFilm final : public Film {
   }
 
   void develop(const ImageBlock& image, const std::filesystem::path& path) const override {
-    Bitmap bitmap(cropSize().x, cropSize().y, 3);
-    for (int y = 0; y < cropSize().y; ++y)
-      for (int x = 0; x < cropSize().x; ++x) {
-        Color3f c = image.value(Point2i(cropOffset().x + x, cropOffset().y + y));
-        float* px = bitmap.pixel(x, y);
-        px[0] = c.r, px[1] = c.g, px[2] = c.b;
-      }
-    std::filesystem::path exr = path, png = path;
-    exr.replace_extension(".exr");
-    png.replace_extension(".png");
-    writeEXR(exr, bitmap);
-    writePNG(png, bitmap);
+    writeExrWithPreview(path, developCrop(image));
   }
 
   std::string toString() const override {

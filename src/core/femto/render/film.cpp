@@ -13,14 +13,35 @@ int readDimension(const Properties& props, const std::string& name, int64_t def,
 
 }  // namespace
 
-Film::Film(const Properties& props) {
+Film::Film(const Properties& props) : Film(props, "gaussian") {}
+
+Film::Film(const Properties& props, const char* defaultFilter) {
   constexpr int64_t MaxSize = 1 << 16;
   size_ = Point2i(readDimension(props, "width", 768, 1, MaxSize), readDimension(props, "height", 576, 1, MaxSize));
   cropOffset_ = Point2i(readDimension(props, "crop_offset_x", 0, 0, size_.x - 1),
                         readDimension(props, "crop_offset_y", 0, 0, size_.y - 1));
   cropSize_ = Point2i(readDimension(props, "crop_width", size_.x - cropOffset_.x, 1, size_.x - cropOffset_.x),
                       readDimension(props, "crop_height", size_.y - cropOffset_.y, 1, size_.y - cropOffset_.y));
-  filter_ = nestedOrDefault<ReconstructionFilter>(props, ObjectKind::ReconstructionFilter, "gaussian");
+  filter_ = nestedOrDefault<ReconstructionFilter>(props, ObjectKind::ReconstructionFilter, defaultFilter);
+}
+
+Bitmap Film::developCrop(const ImageBlock& image) const {
+  Bitmap bitmap(cropSize_.x, cropSize_.y, 3);
+  for (int y = 0; y < cropSize_.y; ++y)
+    for (int x = 0; x < cropSize_.x; ++x) {
+      Color3f c = image.value(Point2i(cropOffset_.x + x, cropOffset_.y + y));
+      float* px = bitmap.pixel(x, y);
+      px[0] = c.r, px[1] = c.g, px[2] = c.b;
+    }
+  return bitmap;
+}
+
+void Film::writeExrWithPreview(const std::filesystem::path& path, const Bitmap& image) {
+  std::filesystem::path exr = path, png = path;
+  exr.replace_extension(".exr");
+  png.replace_extension(".png");
+  writeEXR(exr, image);
+  writePNG(png, image);
 }
 
 }  // namespace femto

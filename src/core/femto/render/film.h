@@ -6,6 +6,7 @@
 
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
+#include <femto/image/image_io.h>
 #include <femto/math/vector.h>
 #include <femto/render/image_block.h>
 #include <femto/render/rfilter.h>
@@ -29,6 +30,16 @@ class Film : public Object {
   virtual void develop(const ImageBlock& image, const std::filesystem::path& path) const = 0;
   /// Default output file extension (".exr").
   virtual std::string defaultExtension() const { return ".exr"; }
+
+  /// The developed crop window of `image` (sum / weight per pixel), RGB.
+  Bitmap developCrop(const ImageBlock& image) const;
+  /// Write `image` as linear float32 OpenEXR at `path` with extension .exr
+  /// and an 8-bit sRGB PNG preview beside it (same stem, .png).
+  static void writeExrWithPreview(const std::filesystem::path& path, const Bitmap& image);
+
+ protected:
+  /// As Film(props), with plugin `defaultFilter` when no <rfilter> is nested.
+  Film(const Properties& props, const char* defaultFilter);
 
  private:
   Point2i size_, cropOffset_, cropSize_;

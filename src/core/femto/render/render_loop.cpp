@@ -1,12 +1,9 @@
 #include <femto/render/render_loop.h>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include <atomic>
-#include <chrono>
-#include <memory>
 #include <vector>
 
 #include <femto/core/log.h>
@@ -16,35 +13,28 @@
 namespace femto {
 namespace {
 
-constexpr int TileSize = 32;
-
-/// Computes one sample at a film position and splats it into a block;
-/// returns false when the block refused the value as invalid.
-using SplatFunction = std::function<bool(const Point2f& filmPos, Sampler& sampler, ImageBlock& block)>;
-
 struct Tile {
   Point2i offset, size;
-  std::unique_ptr<ImageBlock> block;  // null until rendered (or when cancelled before)
+  std::unique_ptr<TileAccumulator> accumulator;
   uint64_t samples = 0, invalid = 0;
 };
 
 std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size) {
   std::vector<Tile> tiles;
-  for (int y = 0; y < size.y; y += TileSize)
-    for (int x = 0; x < size.x; x += TileSize) {
+  for (int y = 0; y < size.y; y += RenderTileSize)
+    for (int x = 0; x < size.x; x += RenderTileSize) {
       Tile t;
       t.offset = Point2i(offset.x + x, offset.y + y);
-      t.size = Point2i(std::min(TileSize, size.x - x), std::min(TileSize, size.y - y));
+      t.size = Point2i(std::min(RenderTileSize, size.x - x), std::min(RenderTileSize, size.y - y));
       tiles.push_back(std::move(t));
     }
   return tiles;
 }
 
-/// Render one tile into its own block. Each pixel restarts the sampler from
-/// (seed, pixel index), so the values do not depend on which thread runs it.
-void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const SplatFunction& splatFn,
-                const ReconstructionFilter* filter, int channels) {
-  tile.block = std::make_unique<ImageBlock>(tile.offset, tile.size, filter, channels);
+/// Render one tile into its own accumulator. Each pixel restarts the sampler
+/// from (seed, pixel index), so the values do not depend on which thread runs it.
+void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const TileFactory& makeTile) {
+  tile.accumulator = makeTile(tile.offset, tile.size);
   std::unique_ptr<Sampler> sampler = prototype.clone();
   const uint32_t spp = prototype.sampleCount();
   for (int y = tile.offset.y; y < tile.offset.y + tile.size.y; ++y)
@@ -53,34 +43,76 @@ void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t se
       for (uint32_t s = 0; s < spp; ++s) {
         Point2f jitter = sampler->next2D();
         Point2f pos(float(x) + jitter.x, float(y) + jitter.y);
-        if (!splatFn(pos, *sampler, *tile.block)) ++tile.invalid;
+        if (!tile.accumulator->addSample(Point2i(x, y), pos, *sampler)) ++tile.invalid;
         ++tile.samples;
         sampler->advance();
       }
     }
 }
 
-RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
-                             ImageBlock& result) {
+/// Computes one sample at a film position and splats it into a block;
+/// returns false when the block refused the value as invalid.
+using SplatFunction = std::function<bool(const Point2f& filmPos, Sampler& sampler, ImageBlock& block)>;
+
+/// The image accumulator: one ImageBlock (tile plus filter border).
+class ImageBlockTile final : public TileAccumulator {
+ public:
+  ImageBlockTile(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter, int channels,
+                 const SplatFunction& splatFn)
+      : block(offset, size, filter, channels), splatFn_(splatFn) {}
+  bool addSample(const Point2i&, const Point2f& pos, Sampler& sampler) override { return splatFn_(pos, sampler, block); }
+  ImageBlock block;
+
+ private:
+  const SplatFunction& splatFn_;
+};
+
+}  // namespace
+
+RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
+                             const TileConsumer& consume) {
   const Film& film = scene.sensor().film();
   const Sampler& prototype = scene.sensor().sampler();
   std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
   ProgressReporter progress("Rendering", pixelsTotal, options.progress);
-  std::atomic<bool> cancelled{false};
+  bool cancelled = false;
+  RenderStats stats;
 
   auto work = [&] {
-    // grainsize 1: tiles are coarse enough, and small grains balance uneven scenes.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t i = range.begin(); i != range.end(); ++i) {
-        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-          cancelled = true;
-          return;
-        }
-        renderTile(tiles[i], prototype, film.size().x, options.seed, splatFn, film.filter(), result.channelCount());
-        progress.update(uint64_t(tiles[i].size.x) * uint64_t(tiles[i].size.y));
-      }
-    });
+    // A pipeline: tiles enter in order, render in parallel, and leave in
+    // order. The token limit bounds how many tiles exist at once (rendering
+    // or waiting for an earlier tile), which bounds memory for large tiles
+    // (transient films) and keeps the consumer's sums in a fixed order.
+    const size_t tokens = size_t(2 * tbb::this_task_arena::max_concurrency());
+    size_t next = 0;
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, Tile*>(tbb::filter_mode::serial_in_order,
+                                      [&](tbb::flow_control& fc) -> Tile* {
+                                        if (next == tiles.size()) {
+                                          fc.stop();
+                                          return nullptr;
+                                        }
+                                        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                                          cancelled = true;
+                                          fc.stop();
+                                          return nullptr;
+                                        }
+                                        return &tiles[next++];
+                                      }) &
+            tbb::make_filter<Tile*, Tile*>(tbb::filter_mode::parallel,
+                                           [&](Tile* tile) {
+                                             renderTile(*tile, prototype, film.size().x, options.seed, makeTile);
+                                             progress.update(uint64_t(tile->size.x) * uint64_t(tile->size.y));
+                                             return tile;
+                                           }) &
+            tbb::make_filter<Tile*, void>(tbb::filter_mode::serial_in_order, [&](Tile* tile) {
+              consume(*tile->accumulator);
+              tile->accumulator.reset();
+              stats.samples += tile->samples;
+              stats.invalidSamples += tile->invalid;
+            }));
   };
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
@@ -90,21 +122,29 @@ RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, c
   }
   progress.finish();
 
-  // Merge in tile order, after all tiles are done: the floating-point sums
-  // are then the same whatever the number of threads or the schedule.
-  RenderStats stats;
-  for (const Tile& tile : tiles) {
-    if (!tile.block) continue;
-    result.merge(*tile.block);
-    stats.samples += tile.samples;
-    stats.invalidSamples += tile.invalid;
-  }
   stats.completed = !cancelled;
   stats.seconds = progress.elapsedSeconds();
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
   if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
   return stats;
+}
+
+namespace {
+
+/// Splat `splatFn` through the film's reconstruction filter into `result`
+/// (crop-window sized block), tiles merged in tile order.
+RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
+                             ImageBlock& result) {
+  const ReconstructionFilter* filter = scene.sensor().film().filter();
+  const int channels = result.channelCount();
+  auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
+    return std::make_unique<ImageBlockTile>(offset, size, filter, channels, splatFn);
+  };
+  // Merged in tile order: the floating-point sums are then the same whatever
+  // the number of threads or the schedule.
+  auto consume = [&](TileAccumulator& tile) { result.merge(static_cast<ImageBlockTile&>(tile).block); };
+  return renderTileStream(scene, options, makeTile, consume);
 }
 
 }  // namespace

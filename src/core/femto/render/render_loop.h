@@ -1,10 +1,14 @@
 #pragma once
-// The parallel render loop: square tiles over TBB, one sampler clone and one
-// ImageBlock per tile, per-pixel seeding (mixSeed(seed, pixel index)) so the
-// result does not depend on thread count; finished tiles are merged in tile
-// order. A progress bar with ETA is drawn on a TTY. On cancellation the tiles
-// done so far are developed into a valid partial image.
+// The parallel render loop: square tiles rendered in parallel (TBB), one
+// sampler clone per tile, per-pixel seeding (mixSeed(seed, pixel index)) so the
+// result does not depend on thread count. Each finished tile is handed to a
+// consumer serially and in tile order (out-of-order tiles wait, at most a few
+// per thread), then freed: memory grows with the tiles in flight, not with the
+// image. A progress bar with ETA is drawn on a TTY. On cancellation the tiles
+// already started are finished and consumed; the rest are skipped.
+#include <cstdint>
 #include <functional>
+#include <memory>
 
 #include <femto/render/image_block.h>
 #include <femto/render/integrator.h>
@@ -14,11 +18,35 @@ namespace femto {
 
 class Scene;
 
+/// What one tile accumulates into; the loop feeds it every camera sample of the tile.
+class TileAccumulator {
+ public:
+  virtual ~TileAccumulator() = default;
+  /// One camera sample at continuous film position `pos` (full-film pixels),
+  /// drawn inside `pixel`. Returns false when the sample was invalid (NaN,
+  /// infinite, negative) and was dropped.
+  virtual bool addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) = 0;
+};
+
+/// Creates the accumulator of the tile at `offset` (film pixels) of `size`.
+using TileFactory = std::function<std::unique_ptr<TileAccumulator>(const Point2i& offset, const Point2i& size)>;
+/// Receives each finished tile, one at a time, in tile order (row-major over
+/// the crop window); the accumulator is destroyed right after.
+using TileConsumer = std::function<void(TileAccumulator& tile)>;
+
+/// Side length of the square tiles (pixels).
+inline constexpr int RenderTileSize = 32;
+
+/// Render every pixel of the scene sensor's crop window, sampleCount() samples
+/// per pixel, into per-tile accumulators, streaming them to `consume`.
+RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
+                             const TileConsumer& consume);
+
 /// Called per sample: returns the value to splat at `filmPos` (full-film pixels).
 using SampleFunction = std::function<Color3f(const Point2f& filmPos, Sampler& sampler)>;
 
-/// Render every pixel of the scene sensor's crop window with `sampleFn`,
-/// sampleCount() samples per pixel, into `result` (crop-window sized block).
+/// The steady case: splat `sampleFn` through the film's reconstruction filter
+/// into `result` (crop-window sized block), tiles merged in tile order.
 RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
                         ImageBlock& result);
 

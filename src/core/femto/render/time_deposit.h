@@ -1,0 +1,84 @@
+#pragma once
+// Exact deposition of radiance on a transient film's time axis.
+//
+// A contribution reported at one OPL, or spread uniformly over an OPL
+// interval (photon-beam estimates, see SEED.md), is split over the time bins
+// by the *exact* share each bin receives: the integral over the bin of the
+// contribution's density convolved with a temporal reconstruction kernel.
+// Working in bin units u = (opl - start) / binWidth (bin i = [i, i+1)):
+//
+//   point at u:          share_i = K(i+1-u) - K(i-u)                       (K: kernel CDF)
+//   interval [u0, u1]:   share_i = G(i+1) - G(i),
+//                        G(a) = (K1(a-u0) - K1(a-u1)) / (u1-u0)           (K1(x) = integral of K up to x)
+//
+// G is the CDF of the box-interval-convolved-with-kernel density, so the
+// shares of all bins plus the parts before and after the window telescope to
+// exactly 1: nothing is lost or invented by the binning.
+#include <vector>
+
+#include <femto/render/time_grid.h>
+
+namespace femto {
+
+/// Temporal reconstruction kernel, in units of bins, normalised to integral 1.
+class TimeFilter {
+ public:
+  enum class Type { Box, Tent, Gaussian };
+
+  /// No spreading: a point lands in the bin that contains it (TimeGrid::binOf).
+  static TimeFilter box() { return TimeFilter(Type::Box, 0.0, 0.0); }
+  /// Triangle of half-width `radius` bins (radius 1 = linear interpolation between bin centres).
+  static TimeFilter tent(double radius);
+  /// Gaussian of standard deviation `sigma` bins, truncated at 4 sigma and renormalised.
+  static TimeFilter gaussian(double sigma);
+
+  Type type() const { return type_; }
+  /// The width parameter (tent radius, gaussian sigma; 0 for box), in bins.
+  double width() const { return width_; }
+  /// Half-width of the kernel's support, in bins: K(x) = 0 for x <= -radius, 1 for x >= radius.
+  double radius() const { return radius_; }
+  /// K(x): integral of the kernel over (-inf, x]. For box, K(0) = 0 (a point
+  /// on a bin's left edge belongs to that bin).
+  double cdf(double x) const;
+  /// K1(x): integral of K over (-inf, x]; equals x for x >= radius (symmetric kernels).
+  double cdfIntegral(double x) const;
+  const char* name() const;
+
+ private:
+  TimeFilter(Type type, double width, double radius) : type_(type), width_(width), radius_(radius) {}
+  Type type_;
+  double width_, radius_;
+};
+
+/// Bin shares of one contribution: weights[k] is the share of bin first + k;
+/// before/after are the shares falling before the window or at/after its end.
+/// weights + before + after sum to 1 (up to rounding).
+struct BinShares {
+  int first = 0;
+  std::vector<double> weights;
+  double before = 0.0, after = 0.0;
+};
+
+class TimeDeposit {
+ public:
+  TimeDeposit(const TimeGrid& grid, const TimeFilter& filter) : grid_(grid), filter_(filter) {}
+
+  /// Shares of a contribution at `opl` (finite).
+  void point(double opl, BinShares& out) const;
+  /// Shares of a contribution spread uniformly over [opl0, opl1] (finite, any
+  /// order). Intervals shorter than ~1e-9 bins are deposited as a point at
+  /// their midpoint (the closed form would divide rounding noise by the length).
+  void interval(double opl0, double opl1, BinShares& out) const;
+
+  /// OPL beyond which nothing reaches the window (window end + kernel radius).
+  double horizon() const { return grid_.end() + filter_.radius() * grid_.binWidth; }
+  const TimeGrid& grid() const { return grid_; }
+  const TimeFilter& filter() const { return filter_; }
+
+ private:
+  double toBins(double opl) const { return (opl - grid_.start) / grid_.binWidth; }
+  TimeGrid grid_;
+  TimeFilter filter_;
+};
+
+}  // namespace femto

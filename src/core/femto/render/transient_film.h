@@ -1,0 +1,55 @@
+#pragma once
+// A film with a time axis: per pixel an RGB histogram over time of arrival
+// (measured as optical path length, see time_grid.h), the steady image (every
+// contribution, whatever its time) and the energy that arrived before and
+// after the time window. Rendered only by TransientIntegrators, whose render
+// loop streams finished tiles straight to disk (transient_output.h); the
+// volume is never held in memory whole. See docs/transient-film.md.
+#include <filesystem>
+#include <string>
+
+#include <femto/render/film.h>
+#include <femto/render/time_deposit.h>
+#include <femto/render/time_grid.h>
+
+namespace femto {
+
+class TransientFilm : public Film {
+ public:
+  /// Reads the Film parameters (default rfilter: box; filters wider than one
+  /// pixel are refused), temporal_bins, start_opl + bin_width_opl or
+  /// start_time + bin_width_time (seconds), time_filter + time_filter_width,
+  /// write_volume, write_frames. See src/plugins/films/transient.cpp.
+  explicit TransientFilm(const Properties& props);
+
+  const TimeGrid& timeGrid() const { return deposit_.grid(); }
+  const TimeFilter& timeFilter() const { return deposit_.filter(); }
+  const TimeDeposit& timeDeposit() const { return deposit_; }
+  /// Keep the .npy volume (false: it is written to a temporary file for the
+  /// frames and removed).
+  bool writesVolume() const { return writeVolume_; }
+  /// Write one EXR per time bin into <stem>_frames/.
+  bool writesFrames() const { return writeFrames_; }
+
+  /// The files a render to `path` produces (only the stem of `path` matters).
+  struct OutputPaths {
+    std::filesystem::path volume;     // <stem>.npy
+    std::filesystem::path steady;     // <stem>.exr (+ <stem>.png preview)
+    std::filesystem::path before;     // <stem>_before.exr: energy arriving before the window
+    std::filesystem::path after;      // <stem>_after.exr: energy arriving at or after its end
+    std::filesystem::path framesDir;  // <stem>_frames/ with frame_00000.exr, ...
+  };
+  OutputPaths outputPaths(const std::filesystem::path& path) const;
+
+  /// A transient film is developed by TransientIntegrator::render; a steady
+  /// integrator reaching here is an error (it was checked before rendering).
+  void develop(const ImageBlock& image, const std::filesystem::path& path) const override;
+  std::string defaultExtension() const override { return ".npy"; }
+  std::string toString() const override;
+
+ private:
+  TimeDeposit deposit_;
+  bool writeVolume_ = true, writeFrames_ = true;
+};
+
+}  // namespace femto

@@ -1,0 +1,121 @@
+#include <femto/render/transient_output.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <femto/core/error.h>
+
+namespace femto {
+namespace {
+
+/// Memory for frames being assembled and for the volume rows read to fill them.
+constexpr size_t FrameBudgetBytes = size_t(64) << 20;
+
+std::string frameName(int bin, int bins) {
+  int digits = std::max(5, int(std::to_string(std::max(bins - 1, 0)).size()));
+  char name[32];
+  std::snprintf(name, sizeof(name), "frame_%0*d.exr", digits, bin);
+  return name;
+}
+
+void removeStaleFrames(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    std::string name = entry.path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".exr") stale.push_back(entry.path());
+  }
+  for (const auto& p : stale) std::filesystem::remove(p, ec);
+}
+
+}  // namespace
+
+void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes) {
+  const int h = volume.height(), w = volume.width(), bins = volume.bins();
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(str("cannot create \"", dir.string(), "\": ", ec.message()));
+  removeStaleFrames(dir);
+  // Half the budget for frames, half for the pixel runs read from the volume.
+  const size_t frameBytes = size_t(w) * h * 3 * sizeof(float), pixelBytes = size_t(bins) * 3 * sizeof(float);
+  const int batch = int(std::clamp<size_t>(budgetBytes / 2 / frameBytes, 1, size_t(bins)));
+  const int run = int(std::clamp<size_t>(budgetBytes / 2 / pixelBytes, 1, size_t(w)));
+  std::vector<float> pixels(size_t(run) * bins * 3);
+  std::vector<Bitmap> frames;
+  for (int b0 = 0; b0 < bins; b0 += batch) {
+    const int count = std::min(batch, bins - b0);
+    frames.assign(size_t(count), Bitmap(w, h, 3));
+    for (int y = 0; y < h; ++y)
+      for (int x0 = 0; x0 < w; x0 += run) {
+        const int n = std::min(run, w - x0);
+        volume.readPixels(y, x0, n, pixels.data());
+        for (int i = 0; i < n; ++i)
+          for (int k = 0; k < count; ++k) {
+            const float* src = &pixels[(size_t(i) * bins + size_t(b0 + k)) * 3];
+            std::copy(src, src + 3, frames[size_t(k)].pixel(x0 + i, y));
+          }
+      }
+    for (int k = 0; k < count; ++k) writeEXR(dir / frameName(b0 + k, bins), frames[size_t(k)]);
+  }
+}
+
+TransientOutput::TransientOutput(const TransientFilm& film, const std::filesystem::path& path) : film_(film) {
+  const Point2i crop = film.cropSize();
+  steady_ = before_ = after_ = Bitmap(crop.x, crop.y, 3);
+  if (path.empty()) return;
+  paths_ = film.outputPaths(path);
+  if (!film.writesVolume() && !film.writesFrames()) return;
+  // Written under a temporary name and renamed at the end, as every output:
+  // a reader never sees a half-written volume under the final name.
+  std::filesystem::path dir = paths_->volume.has_parent_path() ? paths_->volume.parent_path() : ".";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  volumeTmp_ = dir / (".tmp-" + std::to_string(::getpid()) + "-" + paths_->volume.filename().string());
+  volume_.emplace(NpyVolume::create(volumeTmp_, crop.y, crop.x, film.timeGrid().bins));
+}
+
+TransientOutput::~TransientOutput() {
+  if (!volumeTmp_.empty()) {  // not finished (an exception): leave no temporary behind
+    volume_.reset();
+    std::error_code ec;
+    std::filesystem::remove(volumeTmp_, ec);
+  }
+}
+
+void TransientOutput::consume(TransientTile& tile) {
+  tile.normalize();
+  const Point2i origin = tile.offset() - film_.cropOffset();
+  for (int y = 0; y < tile.size().y; ++y) {
+    if (volume_) volume_->writePixels(origin.y + y, origin.x, tile.size().x, tile.row(y));
+    for (int x = 0; x < tile.size().x; ++x) {
+      std::copy_n(tile.steady(x, y), 3, steady_.pixel(origin.x + x, origin.y + y));
+      std::copy_n(tile.before(x, y), 3, before_.pixel(origin.x + x, origin.y + y));
+      std::copy_n(tile.after(x, y), 3, after_.pixel(origin.x + x, origin.y + y));
+    }
+  }
+}
+
+void TransientOutput::finish() {
+  if (!paths_) return;
+  Film::writeExrWithPreview(paths_->steady, steady_);
+  writeEXR(paths_->before, before_);
+  writeEXR(paths_->after, after_);
+  if (!volume_) return;
+  if (film_.writesFrames()) writeFrames(*volume_, paths_->framesDir, FrameBudgetBytes);
+  volume_.reset();
+  std::error_code ec;
+  if (film_.writesVolume()) {
+    std::filesystem::rename(volumeTmp_, paths_->volume, ec);
+    if (ec) throw Error(str("cannot write \"", paths_->volume.string(), "\": ", ec.message()));
+  } else {
+    std::filesystem::remove(volumeTmp_, ec);
+  }
+  volumeTmp_.clear();
+}
+
+}  // namespace femto
