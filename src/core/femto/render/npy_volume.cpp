@@ -114,4 +114,10 @@ void NpyVolume::readPixels(int y, int x, int count, float* data) const {
   transferAll(::pread, fd_, reinterpret_cast<char*>(data), bytes, offsetOf(y, x), path_, "read");
 }
 
+void NpyVolume::readBins(int y, int x, int bin, int count, float* data) const {
+  size_t bytes = size_t(count) * 3 * sizeof(float);
+  uint64_t offset = offsetOf(y, x) + uint64_t(bin) * 3 * sizeof(float);
+  transferAll(::pread, fd_, reinterpret_cast<char*>(data), bytes, offset, path_, "read");
+}
+
 }  // namespace femto

@@ -34,6 +34,8 @@ class NpyVolume {
   void writePixels(int y, int x, int count, const float* data);
   /// Read them back (same layout).
   void readPixels(int y, int x, int count, float* data) const;
+  /// Read bins [bin, bin + count) of pixel (x, y): count * 3 floats.
+  void readBins(int y, int x, int bin, int count, float* data) const;
 
  private:
   NpyVolume(std::filesystem::path path, int fd, int height, int width, int bins, uint64_t dataOffset);

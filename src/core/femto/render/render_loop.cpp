@@ -165,4 +165,19 @@ RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options,
   }, result);
 }
 
+RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options, const RadianceFunction& radiance) {
+  const Sensor& sensor = scene.sensor();
+  const Film& film = sensor.film();
+  ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
+  auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
+    Ray ray;
+    Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
+    if (weight.isBlack()) return Color3f(0.0f);
+    return weight * radiance(ray, sampler);
+  };
+  RenderStats stats = renderTiles(scene, options, sampleFn, result);
+  if (!options.output.empty()) film.develop(result, options.output);
+  return stats;
+}
+
 }  // namespace femto

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 
+#include <femto/math/ray.h>
 #include <femto/render/image_block.h>
 #include <femto/render/integrator.h>
 #include <femto/render/sampler.h>
@@ -57,5 +58,14 @@ using ChannelSampleFunction = std::function<void(const Point2f& filmPos, Sampler
 /// renderTiles for blocks of any number of channels.
 RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
                                ImageBlock& result);
+
+/// Radiance arriving along a camera ray (before the sensor's importance weight).
+using RadianceFunction = std::function<Color3f(const Ray& ray, Sampler& sampler)>;
+
+/// The steady image of `radiance` through the scene's sensor: per sample a
+/// sensor ray (aperture sample first, then `radiance`'s), weighted by the
+/// sensor's importance, splatted with renderTiles and developed by the film
+/// into options.output (when not empty).
+RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options, const RadianceFunction& radiance);
 
 }  // namespace femto

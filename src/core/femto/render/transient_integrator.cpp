@@ -1,5 +1,7 @@
 #include <femto/render/transient_integrator.h>
 
+#include <tbb/task_arena.h>
+
 #include <limits>
 
 #include <femto/render/render_loop.h>
@@ -25,23 +27,6 @@ class SumRecorder final : public RadianceRecorder {
   TimeGrid grid_;  // bins == 0: steady
 };
 
-RenderStats renderSteady(const TransientIntegrator& integrator, const Scene& scene, const RenderOptions& options) {
-  const Sensor& sensor = scene.sensor();
-  const Film& film = sensor.film();
-  ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
-  auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
-    Ray ray;
-    Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
-    if (weight.isBlack()) return Color3f(0.0f);
-    SumRecorder recorder;
-    integrator.sample(scene, ray, sampler, recorder);
-    return weight * recorder.sum;
-  };
-  RenderStats stats = renderTiles(scene, options, sampleFn, result);
-  if (!options.output.empty()) film.develop(result, options.output);
-  return stats;
-}
-
 RenderStats renderTransient(const TransientIntegrator& integrator, const Scene& scene, const TransientFilm& film,
                             const RenderOptions& options) {
   TransientOutput output(film, options.output);
@@ -51,7 +36,11 @@ RenderStats renderTransient(const TransientIntegrator& integrator, const Scene& 
   };
   auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile)); };
   RenderStats stats = renderTileStream(scene, options, makeTile, consume);
-  output.finish();
+  // Frames are written in parallel: with the thread count the user asked for.
+  if (options.threads > 0)
+    tbb::task_arena(options.threads).execute([&] { output.finish(); });
+  else
+    output.finish();
   return stats;
 }
 
@@ -60,7 +49,11 @@ RenderStats renderTransient(const TransientIntegrator& integrator, const Scene& 
 RenderStats TransientIntegrator::render(const Scene& scene, const RenderOptions& options) const {
   if (auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film()))
     return renderTransient(*this, scene, *film, options);
-  return renderSteady(*this, scene, options);
+  return renderSteadyImage(scene, options, [&](const Ray& ray, Sampler& sampler) {
+    SumRecorder recorder;
+    sample(scene, ray, sampler, recorder);
+    return recorder.sum;
+  });
 }
 
 }  // namespace femto

@@ -1,5 +1,6 @@
 #include <femto/render/transient_output.h>
 
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,8 +14,8 @@
 namespace femto {
 namespace {
 
-/// Memory for frames being assembled and for the volume rows read to fill them.
-constexpr size_t FrameBudgetBytes = size_t(64) << 20;
+/// Memory for the frames being assembled (one batch).
+constexpr size_t FrameBudgetBytes = size_t(32) << 20;
 
 std::string frameName(int bin, int bins) {
   int digits = std::max(5, int(std::to_string(std::max(bins - 1, 0)).size()));
@@ -41,26 +42,23 @@ void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(str("cannot create \"", dir.string(), "\": ", ec.message()));
   removeStaleFrames(dir);
-  // Half the budget for frames, half for the pixel runs read from the volume.
-  const size_t frameBytes = size_t(w) * h * 3 * sizeof(float), pixelBytes = size_t(bins) * 3 * sizeof(float);
-  const int batch = int(std::clamp<size_t>(budgetBytes / 2 / frameBytes, 1, size_t(bins)));
-  const int run = int(std::clamp<size_t>(budgetBytes / 2 / pixelBytes, 1, size_t(w)));
-  std::vector<float> pixels(size_t(run) * bins * 3);
+  // A batch of frames fills the budget; each pass reads only the batch's bins
+  // of every pixel (one contiguous run per pixel), so the volume is read once
+  // in total whatever the number of passes.
+  const size_t frameBytes = size_t(w) * h * 3 * sizeof(float);
+  const int batch = int(std::clamp<size_t>(budgetBytes / frameBytes, 1, size_t(bins)));
+  std::vector<float> run(size_t(batch) * 3);
   std::vector<Bitmap> frames;
   for (int b0 = 0; b0 < bins; b0 += batch) {
     const int count = std::min(batch, bins - b0);
     frames.assign(size_t(count), Bitmap(w, h, 3));
     for (int y = 0; y < h; ++y)
-      for (int x0 = 0; x0 < w; x0 += run) {
-        const int n = std::min(run, w - x0);
-        volume.readPixels(y, x0, n, pixels.data());
-        for (int i = 0; i < n; ++i)
-          for (int k = 0; k < count; ++k) {
-            const float* src = &pixels[(size_t(i) * bins + size_t(b0 + k)) * 3];
-            std::copy(src, src + 3, frames[size_t(k)].pixel(x0 + i, y));
-          }
+      for (int x = 0; x < w; ++x) {
+        volume.readBins(y, x, b0, count, run.data());
+        for (int k = 0; k < count; ++k) std::copy_n(&run[size_t(k) * 3], 3, frames[size_t(k)].pixel(x, y));
       }
-    for (int k = 0; k < count; ++k) writeEXR(dir / frameName(b0 + k, bins), frames[size_t(k)]);
+    // Frames are independent files: compress and write them in parallel.
+    tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameName(b0 + k, bins), frames[size_t(k)]); });
   }
 }
 
