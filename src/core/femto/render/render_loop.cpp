@@ -165,7 +165,8 @@ RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options,
   }, result);
 }
 
-RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options, const RadianceFunction& radiance) {
+RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
+                              const CameraRadianceFunction& radiance) {
   const Sensor& sensor = scene.sensor();
   const Film& film = sensor.film();
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());

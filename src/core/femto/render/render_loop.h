@@ -60,12 +60,13 @@ RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options,
                                ImageBlock& result);
 
 /// Radiance arriving along a camera ray (before the sensor's importance weight).
-using RadianceFunction = std::function<Color3f(const Ray& ray, Sampler& sampler)>;
+using CameraRadianceFunction = std::function<Color3f(const Ray& ray, Sampler& sampler)>;
 
 /// The steady image of `radiance` through the scene's sensor: per sample a
 /// sensor ray (aperture sample first, then `radiance`'s), weighted by the
 /// sensor's importance, splatted with renderTiles and developed by the film
 /// into options.output (when not empty).
-RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options, const RadianceFunction& radiance);
+RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
+                              const CameraRadianceFunction& radiance);
 
 }  // namespace femto
