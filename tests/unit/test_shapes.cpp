@@ -206,6 +206,23 @@ TEST_F(ObjShape, TriangulatesPolygonsAndKeepsNormalsAndUvs) {
   for (size_t i = 0; i < 2; ++i) expectNear(triangleNormal(*mesh, i), {0, 0, 1});
 }
 
+TEST_F(ObjShape, TexCoordsAreFlippedVerticallyByDefaultAsInMitsuba) {
+  auto file = write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.1\nvt 0.5 0.2\nvt 0.75 0.3\nf 1/1 2/2 3/3\n");
+  for (bool flip : {true, false}) {
+    Properties props;
+    props.setString("filename", file.string());
+    if (!flip) props.setBool("flip_tex_coords", false);
+    auto shape = makeShape("obj", props);
+    const auto& uvs = shape->asMesh()->uvs();
+    ASSERT_EQ(uvs.size(), 3u);
+    const float v[3] = {0.1f, 0.2f, 0.3f};
+    for (size_t i = 0; i < 3; ++i) {
+      EXPECT_FLOAT_EQ(uvs[i].x, 0.25f * float(i + 1));
+      EXPECT_FLOAT_EQ(uvs[i].y, flip ? 1.0f - v[i] : v[i]);
+    }
+  }
+}
+
 TEST_F(ObjShape, FaceNormalsDropsVertexNormals) {
   auto file = write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
   Properties props;

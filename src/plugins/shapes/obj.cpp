@@ -8,6 +8,9 @@
 // | to_world     | transform | identity | object-to-world placement                        | -    |
 // | flip_normals | boolean   | false    | reverse geometric and shading normals            | -    |
 // | face_normals | boolean   | false    | ignore the file's vertex normals (flat shading)  | -    |
+// | flip_tex_coords | boolean | true   | use v' = 1 - v (OBJ puts v = 0 at the bottom of  | -    |
+// |              |           |          | an image, femto's textures at the top; Mitsuba's |      |
+// |              |           |          | default, so textured scenes match Mitsuba)       |      |
 #include <filesystem>
 #include <map>
 #include <tuple>
@@ -37,6 +40,7 @@ class ObjMesh final : public TriangleMesh {
     Transform toWorld = props.getTransform("to_world", Transform());
     bool flipNormals = props.getBool("flip_normals", false);
     bool faceNormals = props.getBool("face_normals", false);
+    bool flipTexCoords = props.getBool("flip_tex_coords", true);
     // The loader has already resolved relative names against the scene's folder.
     std::filesystem::path path(filename_);
     if (!std::filesystem::is_regular_file(path))
@@ -89,7 +93,10 @@ class ObjMesh final : public TriangleMesh {
                                    attrib.vertices[3 * key.p + 2]);
             if (allNormals)
               normals.emplace_back(attrib.normals[3 * key.n], attrib.normals[3 * key.n + 1], attrib.normals[3 * key.n + 2]);
-            if (allUvs) uvs.emplace_back(attrib.texcoords[2 * key.t], attrib.texcoords[2 * key.t + 1]);
+            if (allUvs) {
+              float v = attrib.texcoords[2 * key.t + 1];
+              uvs.emplace_back(attrib.texcoords[2 * key.t], flipTexCoords ? 1.0f - v : v);
+            }
           }
           indices.push_back(it->second);
         }
