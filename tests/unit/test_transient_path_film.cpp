@@ -141,3 +141,30 @@ TEST(TransientPathFilm, TimeIntegralAgreesWithAnIndependentSteadyRender) {
     EXPECT_LT(std::abs(mean), 5.0 * stderrMean + 1e-7) << "channel " << c;
   }
 }
+
+TEST(TransientPathFilm, ShippedFogCornellBoxLoadsStrictlyAndShowsTheWavefront) {
+  auto dir = test::scratchDir("fog-cornell-box");
+  LoadOptions options;
+  options.strict = true;
+  options.defines = {{"resolution", "16"}, {"spp", "4"}, {"bins", "64"}, {"bin_width", "0.16"}};
+  auto scene = loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml", options);
+  RenderOptions render;
+  render.output = dir / "fog.exr";
+  render.progress = false;
+  RenderStats stats = scene->integrator().render(*scene, render);
+  EXPECT_TRUE(stats.completed);
+  EXPECT_EQ(stats.invalidSamples, 0u);
+  int h = 0, w = 0, bins = 0;
+  std::vector<float> volume = test::readVolume(dir / "fog.npy", h, w, bins);
+  ASSERT_EQ(bins, 64);
+  // No light path is shorter than the straight line from the light (0, 0.8, 0)
+  // to the camera (0, 0, 3.9): |light - camera| = 3.981. Bins 0-5 cover OPL
+  // [3, 3.96) and must be exactly empty; the wavefront arrives in bin 6.
+  std::vector<double> perBin(bins, 0.0);
+  for (size_t i = 0; i < volume.size(); ++i) perBin[(i / 3) % bins] += volume[i];
+  for (int b = 0; b < 6; ++b) EXPECT_EQ(perBin[b], 0.0) << "bin " << b;
+  EXPECT_GT(perBin[6] + perBin[7] + perBin[8], 0.0) << "the direct wavefront through the fog";
+  double total = 0.0;
+  for (double v : perBin) total += v;
+  EXPECT_GT(total, 0.0);
+}
