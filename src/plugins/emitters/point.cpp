@@ -26,18 +26,9 @@ class PointLight final : public Emitter {
   bool isDelta() const override { return true; }
 
   Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
-    ds = DirectionSample();
-    Vec3f toLight = position_ - ref;
-    float dist2 = squaredLength(toLight);
-    if (!(dist2 > 0.0f)) return Color3f(0.0f);
-    ds.p = position_;
-    ds.n = Normal3f(0.0f);
-    ds.dist = std::sqrt(dist2);
-    ds.d = toLight / ds.dist;
-    ds.pdf = 1.0f;
-    ds.delta = true;
+    float dist2 = sampleDeltaPosition(position_, ref, ds);
     // Inverse-square law: irradiance normal to d is I / r^2.
-    return intensity_ / dist2;
+    return dist2 > 0.0f ? intensity_ / dist2 : Color3f(0.0f);
   }
 
   float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0.0f; }

@@ -57,15 +57,8 @@ class SpotLight final : public Emitter {
   bool isDelta() const override { return true; }
 
   Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
-    ds = DirectionSample();
-    Vec3f toLight = position_ - ref;
-    float dist2 = squaredLength(toLight);
+    float dist2 = sampleDeltaPosition(position_, ref, ds);
     if (!(dist2 > 0.0f)) return Color3f(0.0f);
-    ds.p = position_;
-    ds.dist = std::sqrt(dist2);
-    ds.d = toLight / ds.dist;
-    ds.pdf = 1.0f;
-    ds.delta = true;
     // Intensity toward the reference point, over distance squared (inverse-square law).
     return intensityInLocal(normalize(toWorld_.inverse().vector(-ds.d))) / dist2;
   }

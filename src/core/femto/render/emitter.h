@@ -1,6 +1,8 @@
 #pragma once
 // Light sources. Directions are world space. Area emitters are attached to a
 // shape (setShape) by the Shape constructor.
+#include <cmath>
+
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
 #include <femto/render/interaction.h>
@@ -20,6 +22,23 @@ struct DirectionSample {
   float pdf = 0.0f;   // solid-angle density at the reference point (1 for delta lights)
   bool delta = false;
 };
+
+/// Next-event sample of a light at a single `position` (point and spot
+/// lights): fills `ds` as a delta sample seen from `ref` and returns the
+/// squared distance for the inverse-square law, or 0 (ds left empty) when
+/// `ref` sits on the light.
+inline float sampleDeltaPosition(const Point3f& position, const Point3f& ref, DirectionSample& ds) {
+  ds = DirectionSample();
+  Vec3f toLight = position - ref;
+  float dist2 = squaredLength(toLight);
+  if (!(dist2 > 0.0f)) return 0.0f;
+  ds.p = position;
+  ds.dist = std::sqrt(dist2);
+  ds.d = toLight / ds.dist;
+  ds.pdf = 1.0f;
+  ds.delta = true;
+  return dist2;
+}
 
 class Emitter : public Object {
  public:
