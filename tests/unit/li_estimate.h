@@ -2,6 +2,7 @@
 // Estimating an integrator's Li with error bars, for accuracy tests that
 // compare with closed forms: the tolerance comes from the estimator's own
 // standard error, measured from the samples.
+#include <initializer_list>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,6 +85,39 @@ inline void expectWithinErrorBars(const Estimate& e, const Color3f& expected) {
     float tolerance = 5.0f * e.standardError[c] + 2e-4f * expected[c];
     EXPECT_NEAR(e.mean[c], expected[c], tolerance)
         << "channel " << c << ": standard error " << e.standardError[c];
+  }
+}
+
+/// Direct lighting from a large sphere light (radius 1, centre (0, 0, 2),
+/// black, radiance Le) over the diffuse plane z = 0 of reflectance `rho`,
+/// rendered by `integratorXml`. Seen from a plane point x with the sphere
+/// wholly above its horizon, the sphere's form factor gives
+/// E = pi Le (R / |c - x|)^2 cos(theta), so L = rho / pi * E. The sphere covers
+/// a large solid angle, so emitter and BSDF sampling both contribute and
+/// their MIS weights must sum to one.
+inline void expectSphereLightFormFactor(const std::string& integratorXml, const Color3f& rho,
+                                        std::initializer_list<Point3f> points) {
+  const float R = 1.0f;
+  const Point3f c(0, 0, 2);
+  const Color3f Le(2.0f, 1.0f, 0.5f);
+  auto scene = loadStrict(str(R"(<scene version="3.0.0">)", integratorXml, R"(
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="20"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(rho), R"("/></bsdf>
+  </shape>
+  <shape type="sphere">
+    <point name="center" x=")", c.x, R"(" y=")", c.y, R"(" z=")", c.z, R"("/>
+    <float name="radius" value=")", R, R"("/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
+  </shape>
+</scene>)"));
+  const Point3f eye(3.0f, -2.0f, 0.5f);
+  for (Point3f x : points) {
+    SCOPED_TRACE(str("point ", x));
+    float d = distance(c, x);
+    Color3f expected = rho * Le * (R * R / (d * d) * ((c.z - x.z) / d));
+    expectWithinErrorBars(estimateLi(*scene, 20000, [&](PCG32&) { return Ray(eye, normalize(x - eye)); }), expected);
   }
 }
 

@@ -163,34 +163,7 @@ TEST(PathPointLight, TheBackOfTheOneSidedPlaneIsBlackAndDepthOneSeesNoLight) {
 }
 
 TEST(PathSphereLight, DirectLightingMatchesTheSphereFormFactor) {
-  // A black sphere of radius R emitting Le, centred at c over the diffuse
-  // plane z = 0. Seen from x (with the sphere wholly above x's horizon) it
-  // delivers E = pi Le (R / |c - x|)^2 cos(theta) (the form factor of a
-  // sphere), so with max_depth 2 (direct lighting only) L = rho / pi * E.
-  // The sphere subtends a large solid angle, so both emitter and BSDF
-  // sampling contribute and their MIS weights must sum to one.
-  const float R = 1.0f;
-  const Point3f c(0, 0, 2);
-  const Color3f Le(2.0f, 1.0f, 0.5f);
-  auto scene = loadStrict(str(R"(<scene version="3.0.0">
-  <integrator type="path"><integer name="max_depth" value="2"/></integrator>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="20"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(kPlaneRho), R"("/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" x=")", c.x, R"(" y=")", c.y, R"(" z=")", c.z, R"("/>
-    <float name="radius" value=")", R, R"("/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
-  </shape>
-</scene>)"));
-  const Point3f eye(3.0f, -2.0f, 0.5f);
-  for (Point3f x : {Point3f(0, 0, 0), Point3f(1.5f, 0, 0), Point3f(0.5f, -1.0f, 0)}) {
-    SCOPED_TRACE(str("point ", x));
-    float d = distance(c, x);
-    float cosTheta = (c.z - x.z) / d;
-    Color3f expected = kPlaneRho * Le * (R * R / (d * d) * cosTheta);
-    expectWithinErrorBars(estimateLi(*scene, 20000, [&](PCG32&) { return Ray(eye, normalize(x - eye)); }), expected);
-  }
+  // max_depth 2: direct lighting only.
+  expectSphereLightFormFactor(R"(<integrator type="path"><integer name="max_depth" value="2"/></integrator>)",
+                              kPlaneRho, {Point3f(0, 0, 0), Point3f(1.5f, 0, 0), Point3f(0.5f, -1.0f, 0)});
 }
