@@ -1,0 +1,41 @@
+#pragma once
+// Photon beams and camera segments: the two kinds of straight path pieces the
+// transient photon-beams estimator pairs up (Jarosz, Nowrouzezahrai, Sadeghi,
+// Jensen 2011, "A comprehensive theory of volumetric radiance estimation using
+// photon points and beams", sec. 5; made transient by Marco, Jarosz, Gutierrez,
+// Jarabo 2017, "Transient Photon Beams").
+//
+// Time is optical path length (OPL, scene units, see femto/render/time_grid.h).
+#include <femto/math/ray.h>
+#include <femto/math/vector.h>
+#include <femto/render/spectrum.h>
+
+namespace femto {
+class Medium;
+}
+
+namespace femto::beams {
+
+/// The straight piece of a photon's path between two interactions inside one
+/// medium. Light flows from `origin` along `direction`.
+struct Beam {
+  Point3f origin;                  // where the piece starts (emitter, surface or scattering point)
+  Vec3f direction;                 // unit length, the direction light travels
+  float length = 0.0f;             // > 0 and finite: up to the next scattering event or surface
+  Color3f power{0.0f};             // photon power (flux) at `origin`, before attenuation along the beam
+  double opl = 0.0;                // OPL at `origin` since emission (emission offset + delays + sum eta*d)
+  float eta = 1.0f;                // refractive index of the medium crossed: OPL per unit length
+  const Medium* medium = nullptr;  // the medium the beam crosses (never null for stored beams)
+};
+
+/// A camera ray's piece inside one medium: `ray.o + t ray.d`, t in [0, tMax],
+/// unit `ray.d` pointing away from the camera (light flows toward ray.o).
+struct CameraSegment {
+  Ray ray;
+  float tMax = 0.0f;
+  /// OPL per unit length along the segment: the medium's eta, or 0 when the
+  /// camera segment is excluded from time ("observer time" off).
+  float eta = 1.0f;
+};
+
+}  // namespace femto::beams
