@@ -12,6 +12,7 @@ using Command = std::function<int()>;
 
 Command addRenderCommand(CLI::App& app);
 Command addPluginsCommand(CLI::App& app);
+Command addCompareCommand(CLI::App& app);
 
 /// Adds `-p,--plugin-dir DIR` (repeatable) to `command`; the returned action puts
 /// the directories first in the plugin search path, in the order given.

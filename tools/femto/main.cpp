@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
 
   femto::cli::Command render = femto::cli::addRenderCommand(app);
   femto::cli::Command plugins = femto::cli::addPluginsCommand(app);
+  femto::cli::Command compare = femto::cli::addCompareCommand(app);
 
   try {
     app.parse(argc, argv);
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("plugins")) return plugins();
+    if (app.got_subcommand("compare")) return compare();
     return 1;  // unreachable: require_subcommand(1)
   } catch (const femto::Error& e) {
     std::cerr << "error: " << e.what() << '\n';

@@ -53,7 +53,7 @@ LoadOptions loadOptions(const RenderSettings& settings) {
 }
 
 void printSummary(const fs::path& output, const RenderStats& stats, bool interrupted) {
-  std::cout << std::fixed << std::setprecision(1) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
+  std::cout << std::fixed << std::setprecision(3) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
             << stats.seconds << " s (" << stats.samples << " samples)\n";
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " of ", stats.samples,

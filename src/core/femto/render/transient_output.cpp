@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <femto/core/error.h>
+#include <femto/render/volume_info.h>
 
 namespace femto {
 namespace {
@@ -98,6 +99,15 @@ void TransientOutput::consume(TransientTile& tile) {
   }
 }
 
+VolumeInfo TransientOutput::volumeInfo() const {
+  VolumeInfo info;
+  info.width = film_.cropSize().x, info.height = film_.cropSize().y;
+  info.grid = film_.timeGrid();
+  info.filmSize = film_.size(), info.cropOffset = film_.cropOffset();
+  info.timeFilter = film_.timeFilter().name();
+  return info;
+}
+
 void TransientOutput::finish() {
   if (!paths_) return;
   Film::writeExrWithPreview(paths_->steady, steady_);
@@ -110,6 +120,7 @@ void TransientOutput::finish() {
   if (film_.writesVolume()) {
     std::filesystem::rename(volumeTmp_, paths_->volume, ec);
     if (ec) throw Error(str("cannot write \"", paths_->volume.string(), "\": ", ec.message()));
+    writeVolumeInfo(volumeInfoPath(paths_->volume), volumeInfo());
   } else {
     std::filesystem::remove(volumeTmp_, ec);
   }

@@ -14,6 +14,7 @@
 #include <femto/render/npy_volume.h>
 #include <femto/render/transient_film.h>
 #include <femto/render/transient_tile.h>
+#include <femto/render/volume_info.h>
 
 namespace femto {
 
@@ -37,6 +38,9 @@ class TransientOutput {
   const Bitmap& after() const { return after_; }
 
  private:
+  /// The volume's sidecar (<stem>.json: time window, crop; volume_info.h).
+  VolumeInfo volumeInfo() const;
+
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;
   std::filesystem::path volumeTmp_;

@@ -1,0 +1,90 @@
+"""Running femto from the speed-vs-error harness: renders at a budget, the
+cached reference render, and `femto compare --json -`."""
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import time
+
+SUMMARY = re.compile(r"^rendered (.+) in ([0-9.]+) s \(", re.M)
+
+
+class RunError(RuntimeError):
+    """femto failed: the command and what it printed."""
+
+
+def _run(cmd):
+    start = time.monotonic()
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wall = time.monotonic() - start
+    if proc.returncode != 0:
+        raise RunError(f"`{' '.join(cmd)}` exited {proc.returncode}:\n{proc.stdout}{proc.stderr}")
+    return proc.stdout, wall
+
+
+def result_file(output):
+    """What a render to `output` (.exr) produced to compare: the .npy volume of
+    a transient film, else the image itself."""
+    stem, _ = os.path.splitext(output)
+    return stem + ".npy" if os.path.exists(stem + ".npy") else output
+
+
+def render(femto, scene, output, defines, seed, threads):
+    """Render; returns (render seconds as femto reports them, wall seconds of
+    the whole process, file to compare). The EXR frames are deleted: the
+    harness compares the volume, and they would fill the disk."""
+    cmd = [femto, "render", scene, "-o", output, "--seed", str(seed), "--no-progress"]
+    if threads:
+        cmd += ["-t", str(threads)]
+    for name, value in defines:
+        cmd += ["-D", f"{name}={value}"]
+    out, wall = _run(cmd)
+    m = SUMMARY.search(out)
+    if not m:
+        raise RunError(f"`{' '.join(cmd)}` printed no 'rendered ... in N s' line:\n{out}")
+    stem, _ = os.path.splitext(output)
+    shutil.rmtree(stem + "_frames", ignore_errors=True)
+    return float(m.group(2)), wall, result_file(output)
+
+
+def compare(femto, reference, test):
+    """`femto compare REF TEST --json -` as a dict (fields: docs/compare.md)."""
+    out, _ = _run([femto, "compare", reference, test, "--json", "-"])
+    return json.loads(out)
+
+
+def reference_key(scene, defines, integrator, param, budget, seed):
+    """Cache key of a reference render: the scene file's content (not the
+    commit: a reference stays valid while the scene and its overrides do),
+    the overrides, integrator, budget and seed."""
+    with open(scene, "rb") as f:
+        scene_hash = hashlib.sha256(f.read()).hexdigest()
+    spec = {"scene": scene_hash, "defines": sorted(defines), "integrator": integrator,
+            "param": param, "budget": budget, "seed": seed}
+    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:16], spec
+
+
+def cached_reference(femto, scene, defines, integrator, param, budget, seed, threads, cache_dir, log=print):
+    """The reference render's file, rendered once and then taken from
+    `cache_dir`/<key>/ (with meta.json saying what it is)."""
+    key, spec = reference_key(scene, defines, integrator, param, budget, seed)
+    folder = os.path.join(cache_dir, key)
+    meta_path = os.path.join(folder, "meta.json")
+    if os.path.exists(meta_path):
+        with open(meta_path) as f:
+            meta = json.load(f)
+        path = os.path.join(folder, meta["file"])
+        if os.path.exists(path):
+            log(f"reference: cached {path} ({integrator} {param}={budget}, seed {seed})")
+            return path
+    os.makedirs(folder, exist_ok=True)
+    log(f"reference: rendering {integrator} {param}={budget} (seed {seed}) into {folder} ...")
+    seconds, _, path = render(femto, scene, os.path.join(folder, "reference.exr"),
+                              list(defines) + [("integrator", integrator), (param, str(budget))], seed, threads)
+    meta = dict(spec, scene_file=os.path.abspath(scene), file=os.path.basename(path), seconds=seconds)
+    with open(meta_path, "w") as f:
+        json.dump(meta, f, indent=2)
+    log(f"reference: done in {seconds:.1f} s")
+    return path

@@ -1,0 +1,170 @@
+#!/usr/bin/python3
+"""Speed vs error: render one scene with several integrators at increasing
+budgets, measure each render's time and its error against a reference, and
+write a CSV, a log-log plot of error vs time and a summary (time to reach an
+error, equal-time error ratios, convergence slopes). See docs/compare.md.
+
+  tools/compare/speed_vs_error.py scenes/cornell-box-fog/scene.xml \\
+      --integrator transient_path:spp=1,2,4,8,16 -D resolution=64 --out-dir out/fog
+
+The reference is a long render with another seed (cached under --cache-dir,
+keyed by the scene file's content and the overrides), or --reference FILE
+(e.g. an analytic solution). Budgets are passed as -D PARAM=B, so the scene
+needs a <default name="PARAM">; each integrator names its own budget
+parameter (transient_path:spp=..., transient_beams:passes=...).
+"""
+import argparse
+import csv
+import datetime
+import os
+import platform
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import error_curves as ec  # noqa: E402
+import render_runs  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+CSV_COLUMNS = ["integrator", "budget_param", "budget", "seconds", "wall_seconds", "relmse", "mse", "mae",
+               "max_error", "integral_relmse"]
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("scene")
+    p.add_argument("--integrator", action="append", default=[], metavar="NAME:PARAM=B1,B2,...",
+                   help="an integrator and its budgets (repeatable); default transient_path:spp=1,2,4,8,16")
+    p.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
+                   help="scene override for every render, reference included (repeatable)")
+    p.add_argument("--reference", metavar="FILE", help="use this reference instead of rendering one")
+    p.add_argument("--reference-integrator", help="integrator of the reference render (default: the first)")
+    p.add_argument("--reference-budget", default="spp=1024", metavar="PARAM=N",
+                   help="budget of the reference render (default spp=1024)")
+    p.add_argument("--seed", type=int, default=1, help="seed of the budget renders")
+    p.add_argument("--reference-seed", type=int, default=7919, help="seed of the reference (must differ)")
+    p.add_argument("--threads", type=int, default=0, help="femto -t (default: all cores)")
+    p.add_argument("--femto", default=os.path.join(ROOT, "build", "bin", "femto"))
+    p.add_argument("--cache-dir", default=os.path.join(ROOT, "build", "compare-cache"))
+    p.add_argument("--out-dir", required=True)
+    p.add_argument("--target", type=float, help="relMSE for time-to-reach (default: the largest all curves reach)")
+    p.add_argument("--time", choices=["seconds", "wall_seconds"], default="seconds",
+                   help="render time as femto reports it (default) or the whole process")
+    p.add_argument("--title", help="plot title (default: the scene and overrides)")
+    p.add_argument("--plot", help="plot file, .png or .svg (default OUT_DIR/relmse_vs_time.png)")
+    args = p.parse_args(argv)
+    try:
+        args.integrators = [ec.parse_integrator_spec(s) for s in args.integrator or ["transient_path:spp=1,2,4,8,16"]]
+        args.defines = [ec.parse_define(d) for d in args.define]
+        ref_param, ref_budget = ec.parse_define(args.reference_budget)
+        args.reference_param, args.reference_budget = ref_param, int(ref_budget)
+    except (ec.SpecError, ValueError) as e:
+        p.error(str(e))
+    if args.seed == args.reference_seed:
+        p.error("--seed and --reference-seed must differ: a reference sharing the test's samples hides its error")
+    args.reference_integrator = args.reference_integrator or args.integrators[0][0]
+    return args
+
+
+def machine_caption(args):
+    """Machine, commit, date and load: the context any timing needs."""
+    cpu = platform.processor() or "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    def git(*a):
+        r = subprocess.run(["git", "-C", ROOT, *a], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        return r.stdout.strip() if r.returncode == 0 else ""
+    commit = git("rev-parse", "--short", "HEAD") or "unknown commit"
+    if git("status", "--porcelain", "--", "src", "tools"):
+        commit += " (modified)"
+    load = " ".join(open("/proc/loadavg").read().split()[:3]) if os.path.exists("/proc/loadavg") else "?"
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    threads = args.threads or os.cpu_count()
+    return f"{cpu}, {threads} threads; commit {commit}; {date}; load average {load}"
+
+
+def run_budgets(args, reference, log):
+    rows = []
+    for name, param, budgets in args.integrators:
+        for budget in budgets:
+            out = os.path.join(args.out_dir, "renders", f"{name}_{param}{budget}.exr")
+            seconds, wall, result = render_runs.render(
+                args.femto, args.scene, out, args.defines + [("integrator", name), (param, str(budget))],
+                args.seed, args.threads)
+            report = render_runs.compare(args.femto, reference, result)
+            m = report["metrics"]
+            integral = report.get("time_integral", m)
+            row = dict(integrator=name, budget_param=param, budget=budget, seconds=seconds, wall_seconds=round(wall, 3),
+                       relmse=m["relmse"], mse=m["mse"], mae=m["mae"], max_error=m["max_error"],
+                       integral_relmse=integral["relmse"])
+            log(f"{name} {param}={budget}: {seconds:.3f} s, relMSE {m['relmse']:.4g}, MSE {m['mse']:.4g}")
+            rows.append(row)
+    return rows
+
+
+def summarize(rows, args):
+    """Time to reach the target relMSE and equal-time ratios, as text lines."""
+    curves = {}
+    for r in rows:
+        curves.setdefault(r["integrator"], []).append((float(r[args.time]), float(r["relmse"])))
+    lines = []
+    target = args.target or ec.common_target(curves)
+    if target:
+        lines.append(f"time to reach relMSE {target:.4g}:")
+        for name, pts in curves.items():
+            t = ec.time_to_reach(pts, target)
+            lines.append(f"  {name}: " + (f"{t:.3g} s" if t is not None else "not reached"))
+    for name, pts in curves.items():
+        slope = ec.convergence_slope(pts)
+        if slope is not None:
+            lines.append(f"convergence slope of {name}: relMSE ~ time^{slope:.2f} (Monte Carlo: -1)")
+    names = list(curves)
+    when = ec.common_time(curves)
+    if len(names) > 1 and when:
+        ratios = ec.equal_time_ratios(curves, names[0], when)
+        lines.append(f"equal-time relMSE ratio at {when:.3g} s (vs {names[0]}):")
+        for name in names[1:]:
+            r = ratios[name]
+            lines.append(f"  {name} / {names[0]}: " + (f"{r:.3g}" if r is not None else "n/a"))
+    elif len(names) > 1:
+        lines.append("equal-time ratio: the curves share no time range")
+    return lines
+
+
+def main(argv):
+    args = parse_args(argv)
+    os.makedirs(args.out_dir, exist_ok=True)
+    log = lambda s: print(s, flush=True)  # noqa: E731
+    caption = machine_caption(args)
+    reference = args.reference or render_runs.cached_reference(
+        args.femto, args.scene, args.defines, args.reference_integrator, args.reference_param, args.reference_budget,
+        args.reference_seed, args.threads, args.cache_dir, log)
+    rows = run_budgets(args, reference, log)
+    csv_path = os.path.join(args.out_dir, "results.csv")
+    with open(csv_path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+    lines = summarize(rows, args)
+    with open(os.path.join(args.out_dir, "summary.txt"), "w") as f:
+        f.write(caption + "\n" + "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    import plot_curves  # matplotlib only when plotting
+    scene = os.path.relpath(os.path.abspath(args.scene), ROOT)
+    title = args.title or scene + " " + " ".join(f"{n}={v}" for n, v in args.defines)
+    plot = args.plot or os.path.join(args.out_dir, "relmse_vs_time.png")
+    ref_text = args.reference or f"{args.reference_integrator} {args.reference_param}={args.reference_budget}"
+    plot_curves.plot_error_vs_time(rows, plot, title, f"{caption}\nreference: {ref_text}", time_key=args.time)
+    print(f"wrote {csv_path}, {plot}")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except render_runs.RunError as e:
+        sys.exit(f"error: {e}")
