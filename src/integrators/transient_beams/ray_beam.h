@@ -13,32 +13,71 @@
 // inside the beam's kernel region maps to a continuous interval of arrival
 // OPLs -- camera OPL to the point plus the beam's OPL to its projection --
 // and the estimate is spread uniformly over that interval (the film's
-// addInterval deposits it exactly per bin). Along the overlap the total OPL
-// changes at a rate eta*(1 + cos(theta')) per unit length on the camera ray
-// (theta' between beam direction and the reversed camera direction): an
-// anti-parallel pair collapses to one instant, a parallel pair spreads widest.
+// addInterval deposits it exactly per bin).
 //
-// Hard cases the implementation must survive (each has a unit test against a
-// numerically integrated reference): near-parallel and anti-parallel pairs,
-// grazing angles, beams starting or ending inside the kernel, zero-length
-// overlaps. The returned kernel factor and OPLs are always finite.
+// Geometry (derivation and tests: docs/photon-beams.md). Camera segment
+// x(t) = o + t w, t in [0, tMax]; beam y(s) = b + s v, s in [0, length];
+// c = cos(theta) = w.v (w points away from the camera, v along the light).
+//  * Kernel region: the finite cylinder of radius r around the beam, capped
+//    by the planes through the beam's ends perpendicular to it. The segment's
+//    overlap with it is [tRayBegin, tRayEnd] = chord of the infinite cylinder
+//    (|x(t) - axis| < r, a quadratic in t) clipped to the slab
+//    0 <= s(t) = (x(t) - b).v <= length and to [0, tMax].
+//  * OPL along the overlap: OPL(t) = segment.eta t + beam.eta s(t), linear in
+//    t with rate segment.eta + beam.eta cos(theta). With equal indices a pair
+//    whose beam travels toward the camera (w = -v, "anti-parallel") keeps the
+//    path length stationary: the interval collapses to one instant; a beam
+//    travelling away from the camera (w = v) spreads widest (rate 2 eta).
+//  * Kernel value: the 1D estimate 1/(2 r sin(theta)) is an unbiased,
+//    per-pair-constant stand-in for the exact blurred-beam integral
+//    chord/(pi r^2) (averaged over the lateral offset d in [-r, r] the chord
+//    2 sqrt(r^2 - d^2)/sin(theta) divided by pi r^2 gives exactly
+//    1/(2 r sin(theta))) -- but only while the d = 0 chord, of half-length
+//    r/sin(theta) around the closest approach, lies inside the slab and
+//    [0, tMax]. Otherwise (near-parallel pairs, beam or camera segment ending
+//    inside the kernel) the average no longer holds and 1/sin(theta) blows
+//    up, so the pair gets the exact value chord/(pi r^2), finite (chord <=
+//    min(tMax, length/|cos(theta)|)) and unbiased. The choice depends only on
+//    quantities invariant under the lateral offset, so the mix stays unbiased.
+//
+// Hard cases (each has a unit test against a numerically integrated
+// reference, tests/unit/test_ray_beam.cpp): near-parallel and anti-parallel
+// pairs, grazing (tangent) passes, beams starting or ending inside the
+// kernel, camera segments ending inside it, zero-length overlaps, degenerate
+// and non-finite input. On true, every field of the hit is finite.
 #include <transient_beams/beam.h>
 
 namespace femto::beams {
 
-/// One camera segment x beam pair within the kernel radius.
+/// Which kernel weights a pair (docs/photon-beams.md, "Kernels").
+enum class RayBeamKernel {
+  /// Jarosz et al. 2011 beam x beam 1D, 1/(2 r sin(theta)), where the whole
+  /// kernel chord fits in both segments; the exact cylinder value elsewhere.
+  OneD,
+  /// Always the exact line integral of the beam blurred by the disc kernel
+  /// 1/(pi r^2): chord/(pi r^2). Its transient deposit equals the blurred
+  /// beam's arrival-time density exactly, bin by bin (for comparison).
+  Cylinder,
+};
+
+/// One camera segment x beam pair within the kernel radius. All fields finite.
 struct RayBeamHit {
-  float tRay = 0.0f;    // camera parameter where sigma_s, f_p and T_cam are evaluated
-  float tBeam = 0.0f;   // beam parameter where T_beam is evaluated (0 <= tBeam <= length)
-  float kernel = 0.0f;  // geometric density factor (1 / (2 r sin(theta)) away from the hard cases); finite, >= 0
+  float tRay = 0.0f;    // camera parameter where sigma_s, f_p and T_cam are evaluated (in [tRayBegin, tRayEnd])
+  float tBeam = 0.0f;   // beam parameter where T_beam is evaluated (0 <= tBeam <= length): the projection of ray(tRay)
+  float kernel = 0.0f;  // geometric density factor, 1/area (1 / (2 r sin(theta)) away from the hard cases); finite, > 0
   /// OPL added to (camera OPL at ray.o) + beam.opl at the two ends of the
   /// overlap: the estimate covers [oplBegin, oplEnd], oplBegin <= oplEnd
   /// (equal when the interval collapses).
   double oplBegin = 0.0, oplEnd = 0.0;
+  /// The overlap on the camera segment: 0 <= tRayBegin < tRayEnd <= tMax.
+  float tRayBegin = 0.0f, tRayEnd = 0.0f;
 };
 
-/// Does `segment` pass within `radius` of `beam`? On true, `hit` holds the
-/// estimate's geometry; false leaves `hit` unspecified.
-bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit);
+/// Does `segment` pass within `radius` of `beam` (through its kernel region,
+/// with an overlap of positive length)? On true, `hit` holds the estimate's
+/// geometry; false leaves `hit` unspecified. Non-finite or degenerate input
+/// (radius, length or tMax not > 0, NaN anywhere) gives false.
+bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit,
+                      RayBeamKernel kernel = RayBeamKernel::OneD);
 
 }  // namespace femto::beams

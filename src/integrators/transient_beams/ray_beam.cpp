@@ -1,0 +1,105 @@
+// Ray x beam 1D-kernel estimate, transient (see ray_beam.h and
+// docs/photon-beams.md for the derivation of every step).
+#include <transient_beams/ray_beam.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/math/constants.h>
+
+namespace femto::beams {
+
+namespace {
+
+// |cos(theta)| below this: the camera segment runs perpendicular to the beam,
+// its projection s(t) is constant and the cap planes do not clip it (dividing
+// by cos(theta) would produce inf or 0/0).
+constexpr float kPerpendicular = 1e-12f;
+// sin^2(theta) below this (theta < 1e-5 rad, about the rounding of unit float
+// vectors): the lines are parallel and the closest-approach quadratic
+// degenerates (its leading coefficient is rounding noise). The distance to
+// the axis then varies by < 1e-5 per unit length; it is taken at the middle
+// of the slab-clipped segment.
+constexpr float kParallelSin2 = 1e-10f;
+
+}  // namespace
+
+bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit,
+                      RayBeamKernel kernel) {
+  const float r = radius, r2 = radius * radius, length = beam.length, tMax = segment.tMax;
+  // Degenerate input: no kernel region or no segment (NaN fails every test).
+  if (!(r2 > 0.0f) || !(r < Infinity) || !(length > 0.0f) || !(length < Infinity) || !(tMax > 0.0f)) return false;
+
+  const Vec3f& w = segment.ray.d;
+  const Vec3f& v = beam.direction;
+  const Vec3f delta = segment.ray.o - beam.origin;
+  const float cosTheta = dot(w, v);
+  const float s0 = dot(delta, v);  // projection of ray.o on the beam: s(t) = s0 + t cos(theta)
+
+  // Slab between the cap planes, 0 <= s(t) <= length, intersected with [0, tMax].
+  float lo = 0.0f, hi = tMax;
+  if (std::abs(cosTheta) > kPerpendicular) {
+    const float t0 = -s0 / cosTheta, t1 = (length - s0) / cosTheta;
+    lo = std::max(lo, std::min(t0, t1));
+    hi = std::min(hi, std::max(t0, t1));
+  } else if (!(s0 >= 0.0f && s0 <= length)) {
+    return false;
+  }
+  if (!(hi > lo)) return false;
+
+  // Components perpendicular to the beam: the distance to its axis is
+  // |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
+  const Vec3f wPerp = w - v * cosTheta;
+  const Vec3f dPerp = delta - v * s0;
+  const float a = dot(wPerp, wPerp);  // sin^2(theta)
+  float tBegin, tEnd, tRay;
+  bool oneD = false;
+  if (a > kParallelSin2) {
+    // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
+    // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
+    // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
+    const Vec3f m = cross(dPerp, wPerp);
+    const float disc = a * r2 - dot(m, m);
+    if (!(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
+    const float tClosest = -dot(dPerp, wPerp) / a;
+    const float halfChord = std::sqrt(disc) / a;  // sqrt(r^2 - d^2) / sin(theta)
+    tBegin = std::max(lo, tClosest - halfChord);
+    tEnd = std::min(hi, tClosest + halfChord);
+    // The 1D kernel's average over the lateral offset equals the chord's only
+    // if the longest chord (d = 0, half-length r / sin(theta)) is unclipped.
+    // tClosest, the slab and tMax do not change with the offset, so every
+    // offset of this pair makes the same choice: the mix is unbiased.
+    const float maxHalfChord = r / std::sqrt(a);
+    oneD = kernel == RayBeamKernel::OneD && tClosest - maxHalfChord >= lo && tClosest + maxHalfChord <= hi;
+    tRay = oneD ? tClosest : 0.5f * (tBegin + tEnd);
+  } else {
+    const Vec3f mid = dPerp + wPerp * (0.5f * (lo + hi));
+    if (!(dot(mid, mid) < r2)) return false;
+    tBegin = lo, tEnd = hi;
+    tRay = 0.5f * (tBegin + tEnd);
+  }
+  if (!(tEnd > tBegin)) return false;  // zero-length overlap (touches a cap edge or tMax)
+
+  hit.tRayBegin = tBegin;
+  hit.tRayEnd = tEnd;
+  hit.tRay = tRay;
+  hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
+  hit.kernel = oneD ? 0.5f / (r * std::sqrt(a)) : (tEnd - tBegin) * InvPi / r2;
+
+  // OPL is linear along the overlap: OPL(t) = eta_c t + eta_b s(t). The far
+  // end adds rate * length in double, so a stationary pair (rate 0) collapses
+  // exactly instead of through the cancellation of two large OPLs.
+  const double sBegin = std::clamp(double(s0) + double(tBegin) * cosTheta, 0.0, double(length));
+  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * sBegin;
+  const double rate = double(segment.eta) + double(beam.eta) * double(cosTheta);
+  const double oplB = oplA + rate * (double(tEnd) - double(tBegin));
+  hit.oplBegin = std::min(oplA, oplB);
+  hit.oplEnd = std::max(oplA, oplB);
+
+  // Last line of defence: nothing non-finite reaches the film (NaN origins,
+  // directions or indices propagate to here).
+  return hit.kernel > 0.0f && std::isfinite(hit.kernel) && std::isfinite(hit.tRay) && std::isfinite(hit.tBeam) &&
+         std::isfinite(hit.oplBegin) && std::isfinite(hit.oplEnd);
+}
+
+}  // namespace femto::beams
