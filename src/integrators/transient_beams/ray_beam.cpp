@@ -36,10 +36,25 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   const float cosTheta = dot(w, v);
   const float s0 = dot(delta, v);  // projection of ray.o on the beam: s(t) = s0 + t cos(theta)
 
+  // Components perpendicular to the beam: the distance to its axis is
+  // |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
+  const Vec3f wPerp = w - v * cosTheta;
+  const Vec3f dPerp = delta - v * s0;
+  const float a = dot(wPerp, wPerp);  // sin^2(theta)
+  const bool parallel = !(a > kParallelSin2);
+  // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
+  // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
+  // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
+  // Tested first: it rejects most candidates a beam map returns, division-free.
+  const Vec3f m = cross(dPerp, wPerp);
+  const float disc = a * r2 - dot(m, m);
+  if (!parallel && !(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
+
   // Slab between the cap planes, 0 <= s(t) <= length, intersected with [0, tMax].
   float lo = 0.0f, hi = tMax;
   if (std::abs(cosTheta) > kPerpendicular) {
-    const float t0 = -s0 / cosTheta, t1 = (length - s0) / cosTheta;
+    const float invCos = 1.0f / cosTheta;
+    const float t0 = -s0 * invCos, t1 = (length - s0) * invCos;
     lo = std::max(lo, std::min(t0, t1));
     hi = std::min(hi, std::max(t0, t1));
   } else if (!(s0 >= 0.0f && s0 <= length)) {
@@ -47,29 +62,21 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   }
   if (!(hi > lo)) return false;
 
-  // Components perpendicular to the beam: the distance to its axis is
-  // |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
-  const Vec3f wPerp = w - v * cosTheta;
-  const Vec3f dPerp = delta - v * s0;
-  const float a = dot(wPerp, wPerp);  // sin^2(theta)
   float tBegin, tEnd, tRay;
   bool oneD = false;
-  if (a > kParallelSin2) {
-    // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
-    // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
-    // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
-    const Vec3f m = cross(dPerp, wPerp);
-    const float disc = a * r2 - dot(m, m);
-    if (!(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
-    const float tClosest = -dot(dPerp, wPerp) / a;
-    const float halfChord = std::sqrt(disc) / a;  // sqrt(r^2 - d^2) / sin(theta)
+  float invSinTheta = 0.0f;
+  if (!parallel) {
+    const float invA = 1.0f / a;
+    invSinTheta = 1.0f / std::sqrt(a);
+    const float tClosest = -dot(dPerp, wPerp) * invA;
+    const float halfChord = std::sqrt(disc) * invA;  // sqrt(r^2 - d^2) / sin(theta)
     tBegin = std::max(lo, tClosest - halfChord);
     tEnd = std::min(hi, tClosest + halfChord);
     // The 1D kernel's average over the lateral offset equals the chord's only
     // if the longest chord (d = 0, half-length r / sin(theta)) is unclipped.
     // tClosest, the slab and tMax do not change with the offset, so every
     // offset of this pair makes the same choice: the mix is unbiased.
-    const float maxHalfChord = r / std::sqrt(a);
+    const float maxHalfChord = r * invSinTheta;
     oneD = kernel == RayBeamKernel::OneD && tClosest - maxHalfChord >= lo && tClosest + maxHalfChord <= hi;
     tRay = oneD ? tClosest : 0.5f * (tBegin + tEnd);
   } else {
@@ -84,7 +91,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tRayEnd = tEnd;
   hit.tRay = tRay;
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
-  hit.kernel = oneD ? 0.5f / (r * std::sqrt(a)) : (tEnd - tBegin) * InvPi / r2;
+  hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 
   // OPL is linear along the overlap: OPL(t) = eta_c t + eta_b s(t). The far
   // end adds rate * length in double, so a stationary pair (rate 0) collapses
