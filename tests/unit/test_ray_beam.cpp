@@ -8,6 +8,7 @@
 // numerically integrated blurred beam.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -99,6 +100,10 @@ TEST(RayBeam, ClippedPairsGetTheExactChord) {
       EXPECT_NEAR(h.tRayBegin, ref.tFirst, ref.step + 1e-5);
       EXPECT_NEAR(h.tRayEnd, ref.tLast, ref.step + 1e-5);
       EXPECT_NEAR(h.tRay, 0.5 * (ref.tFirst + ref.tLast), ref.step + 1e-5);
+      // tBeam is the projection of ray(tRay) on the beam.
+      double sAtRay = 0;
+      test::insideKernel(p, r, h.tRay, &sAtRay);
+      EXPECT_NEAR(h.tBeam, std::clamp(sAtRay, 0.0, double(p.beam.length)), 1e-5);
     }
   }
 }
