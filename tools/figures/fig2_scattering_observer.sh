@@ -8,15 +8,11 @@
 #   tools/figures/fig2_scattering_observer.sh [extra femto options, e.g. -D integrator=transient_beams]
 # Environment: FEMTO (default build/bin/femto), OUT (default out/fig2),
 # SPP (64), RES (96), BINS (128), BIN_WIDTH (0.05).
-set -eu
-FEMTO=${FEMTO:-build/bin/femto}
-OUT=${OUT:-out/fig2}
-SPP=${SPP:-64}
-RES=${RES:-96}
+OUT_DEFAULT=out/fig2 SPP_DEFAULT=64 RES_DEFAULT=96
+. tools/figures/common.sh
 BINS=${BINS:-128}
 BIN_WIDTH=${BIN_WIDTH:-0.05}
 SCENE=scenes/seed-glass-mirror-balls/scene.xml
-mkdir -p "$OUT"
 
 # Single scattering: max_depth 2 (one scattering vertex before the light);
 # multiple: 12. Without observer time the window starts at OPL 0 (the light
@@ -25,13 +21,11 @@ mkdir -p "$OUT"
 # the light's travel in both rows, delayed by the camera segment (the
 # observer-time rows lag at the back of the room, lead at the front).
 # Extra options given to this script pass through to every render.
-render() {
+render() {  # name max_depth observer_time start [extra options]
   name=$1 depth=$2 observer=$3 start=$4
   shift 4
-  t0=$(date +%s)
-  "$FEMTO" render "$SCENE" -o "$OUT/$name.exr" -D max_depth="$depth" -D observer_time="$observer" -D start="$start" \
+  timed_render "$name" "$SCENE" -D max_depth="$depth" -D observer_time="$observer" -D start="$start" \
     -D spp="$SPP" -D resolution="$RES" -D bins="$BINS" -D bin_width="$BIN_WIDTH" "$@"
-  echo "$name: $(( $(date +%s) - t0 )) s wall"
 }
 render single_observer 2 true 3.4 "$@"
 render multiple_observer 12 true 3.4 "$@"

@@ -8,16 +8,10 @@
 # compared with this (the test suite's job).
 # Usage: tools/figures/fig3_dirac_continuous.sh [extra femto options]
 # Environment: FEMTO (build/bin/femto), OUT (out/fig3), SPP (256), RES (128, height 3/4).
-set -eu
-FEMTO=${FEMTO:-build/bin/femto}
-OUT=${OUT:-out/fig3}
-SPP=${SPP:-256}
-RES=${RES:-128}
-mkdir -p "$OUT"
-t0=$(date +%s)
-"$FEMTO" render scenes/seed-coloured-mirrors-caustic/scene.xml -o "$OUT/dirac.exr" \
+OUT_DEFAULT=out/fig3 SPP_DEFAULT=256 RES_DEFAULT=128
+. tools/figures/common.sh
+timed_render dirac scenes/seed-coloured-mirrors-caustic/scene.xml \
   -D spp="$SPP" -D resolution="$RES" -D height=$((RES * 3 / 4)) "$@"
-echo "dirac: $(( $(date +%s) - t0 )) s wall"
 # Window: OPL 6 + 120 bins of 0.05. Columns: the floor lit directly (+1.6),
 # the caustic under the ball (+2.7), its reflections in the mirrors (+3.4 .. +4.2).
 /usr/bin/python3 tools/figures/frame_strip.py "$OUT/fig3_dirac_continuous.png" \

@@ -6,12 +6,8 @@
 # tools/scenes/make_blob_mesh.py and says so under the figure.
 # Usage: tools/figures/fig4_glass_armadillo.sh [extra femto options]
 # Environment: FEMTO (build/bin/femto), OUT (out/fig4), SPP (128), RES (128, height 3/4).
-set -eu
-FEMTO=${FEMTO:-build/bin/femto}
-OUT=${OUT:-out/fig4}
-SPP=${SPP:-128}
-RES=${RES:-128}
-mkdir -p "$OUT"
+OUT_DEFAULT=out/fig4 SPP_DEFAULT=128 RES_DEFAULT=128
+. tools/figures/common.sh
 mesh=$(cd .. && pwd)/shared/meshes/armadillo.obj
 note="mesh: the Stanford Armadillo (Stanford 3D Scanning Repository, research use)"
 if [ ! -f "$mesh" ]; then
@@ -19,10 +15,8 @@ if [ ! -f "$mesh" ]; then
   /usr/bin/python3 tools/scenes/make_blob_mesh.py "$mesh"
   note="mesh: femto's generated fallback creature (tools/scenes/make_blob_mesh.py); the Armadillo was not present"
 fi
-t0=$(date +%s)
-"$FEMTO" render scenes/seed-glass-armadillo/scene.xml -o "$OUT/armadillo.exr" -D mesh="$mesh" \
+timed_render armadillo scenes/seed-glass-armadillo/scene.xml -D mesh="$mesh" \
   -D spp="$SPP" -D resolution="$RES" -D height=$((RES * 3 / 4)) "$@"
-echo "armadillo: $(( $(date +%s) - t0 )) s wall"
 # Window: OPL 5.5 + 120 bins of 0.05: the floor lit directly from ~+1, light
 # through the glass later, the back wall from ~+3.
 /usr/bin/python3 tools/figures/frame_strip.py "$OUT/fig4_glass_armadillo.png" \
