@@ -2,6 +2,13 @@
 // The beam map: every beam of one photon pass in an acceleration structure
 // that finds the beams a camera segment may pass within the kernel radius of.
 // Immutable once built; queries are thread-safe.
+//
+// Structure: a bounding volume hierarchy over beam *pieces* (long beams are
+// cut into pieces of bounded length so that each piece's axis-aligned box,
+// the piece inflated by the radius, stays close to the beam's capsule), built
+// with a binned surface area heuristic. Choices measured in docs/BENCHMARKS.md
+// ("Beam map"); the build is parallel but deterministic (same beams, same
+// tree).
 #include <cstdint>
 #include <vector>
 
@@ -9,23 +16,47 @@
 
 namespace femto::beams {
 
+/// Tuning knobs of the beam map. The defaults are the measured choice
+/// (docs/BENCHMARKS.md, "Beam map"); the benchmark varies them.
+struct BeamMapOptions {
+  /// Beams longer than this many kernel radii are cut into pieces of about
+  /// this length. 0 = never cut.
+  float pieceLengthInRadii = 4.0f;
+  /// Memory bound: on average at most this many pieces per beam; when the
+  /// cut above would exceed it, all pieces are lengthened uniformly.
+  float maxPiecesPerBeam = 4.0f;
+  /// Pieces per BVH leaf (1..16).
+  int maxLeafSize = 4;
+  /// Split rule: binned surface area heuristic, or the object median along
+  /// the widest centroid axis.
+  enum class Split { Sah, Median } split = Split::Sah;
+};
+
 class BeamMap {
  public:
-  /// Builds the structure over `beams`, each inflated by `radius`.
+  /// Builds the structure over `beams`, each inflated by `radius`. Throws
+  /// femto::Error for a negative or non-finite radius, or a beam with a
+  /// non-finite origin/direction or a negative or non-finite length.
   BeamMap(std::vector<Beam> beams, float radius);
+  BeamMap(std::vector<Beam> beams, float radius, const BeamMapOptions& options);
   ~BeamMap();
   BeamMap(BeamMap&&) noexcept;
   BeamMap& operator=(BeamMap&&) noexcept;
 
   /// Indices (into beams()) of the beams whose radius-inflated bounds the
   /// segment crosses: a superset of the beams within `radius`, each at most
-  /// once, in ascending order. `out` is cleared first.
+  /// once, in ascending order. `out` is cleared first. The segment is
+  /// ray.o + t ray.d for t in [0, tMax] (ray.tmin/tmax are ignored); tMax may
+  /// be infinite; a NaN or negative tMax finds nothing.
   void query(const CameraSegment& segment, std::vector<uint32_t>& out) const;
 
   const std::vector<Beam>& beams() const { return beams_; }
   float radius() const { return radius_; }
   /// Bytes held by the structure (beams and nodes), for memory reports.
   size_t memoryBytes() const;
+  /// Number of pieces the beams were cut into, and of BVH nodes (statistics).
+  size_t pieceCount() const;
+  size_t nodeCount() const;
 
  private:
   struct Impl;

@@ -4,6 +4,14 @@
 // mirrors). Each photon remembers the OPL at which it arrived, so a density
 // estimate at a camera hit deposits its energy at photon OPL + camera OPL.
 // Immutable once built; queries are thread-safe.
+//
+// Structure: a hashed uniform grid (Teschner et al. 2003, "Optimized spatial
+// hashing for collision detection of deformable objects"): photons sorted by
+// cell, cells hashed into a table of about two buckets per photon, so memory
+// is linear in the photon count however fine the grid. A query visits the
+// cells its sphere overlaps; it is cheapest when the cell size is about the
+// query radius, so pass the radius you will query with when you know it.
+#include <cstdint>
 #include <vector>
 
 #include <femto/math/vector.h>
@@ -22,22 +30,42 @@ struct SurfacePhoton {
 class SurfacePhotonMap {
  public:
   SurfacePhotonMap() = default;
+  /// Cell size guessed from the photons alone: photons lie on surfaces, so
+  /// cells are sized for about 8 photons each on a surface spanning the
+  /// photons' bounding box. Prefer the constructor below when the query
+  /// radius is known.
   explicit SurfacePhotonMap(std::vector<SurfacePhoton> photons);
+  /// Cell size = `queryRadius` (> 0, finite), enlarged only if the grid
+  /// would need more than 2^21 cells along an axis. Throws femto::Error for
+  /// a bad radius or a photon with a non-finite position.
+  SurfacePhotonMap(std::vector<SurfacePhoton> photons, float queryRadius);
 
-  /// Indices of the photons within distance `radius` of `p` (exact; `out`
-  /// is cleared first).
+  /// Indices of the photons within distance `radius` of `p` (exact:
+  /// squaredLength(x - p) <= radius * radius; each once, in an order fixed by
+  /// the map and `p`; `out` is cleared first). Any radius works; radii
+  /// much larger than the cell size cost more cells per query.
   void query(const Point3f& p, float radius, std::vector<uint32_t>& out) const;
 
   const std::vector<SurfacePhoton>& photons() const { return photons_; }
   size_t size() const { return photons_.size(); }
+  float cellSize() const { return cellSize_; }
+  /// Bytes held (photons and grid), for memory reports.
+  size_t memoryBytes() const;
 
  private:
+  void build(float cellSize);
+  uint64_t cellKey(const Point3f& p) const;
+
   std::vector<SurfacePhoton> photons_;
-  // Acceleration structure chosen by the implementation (hash grid or kd-tree).
-  std::vector<uint32_t> cellStart_, order_;
+  // Photons sorted by bucket: bucket b holds sorted entries
+  // [bucketStart_[b], bucketStart_[b + 1]); each entry keeps its photon's
+  // index, position and cell key (to skip other cells sharing the bucket).
+  std::vector<uint32_t> bucketStart_, order_;
+  std::vector<Point3f> sortedP_;
+  std::vector<uint64_t> sortedKey_;
   Point3f gridMin_;
   float cellSize_ = 0.0f;
-  int gridRes_[3] = {0, 0, 0};
+  int gridRes_[3] = {0, 0, 0};  // cells along each axis covering the photons
 };
 
 }  // namespace femto::beams

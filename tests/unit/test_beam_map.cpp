@@ -1,0 +1,287 @@
+// BeamMap (transient photon beams' acceleration structure) against brute
+// force: every beam within the kernel radius of a camera segment -- by an
+// exact segment-segment distance written here, independent of the map -- is
+// among the candidates; candidates are unique, ascending and never far from
+// the segment. Edge cases: empty map, one beam, axis-parallel beams and
+// segments (flat slabs), very long beams, degenerate segments, bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include <femto/core/error.h>
+#include <femto/math/pcg32.h>
+#include <transient_beams/beam_map.h>
+
+namespace femto::beams {
+namespace {
+
+Vec3d toD(const Vec3f& v) { return Vec3d(v); }
+
+double pointSegmentDistance2(const Vec3d& p, const Vec3d& a, const Vec3d& b) {
+  Vec3d ab = b - a;
+  double len2 = dot(ab, ab);
+  double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return squaredLength(a + ab * t - p);
+}
+
+/// Exact distance between segments [p0, p1] and [q0, q1]: the squared
+/// distance is a convex quadratic over (s, t) in [0, 1]^2, so its minimum is
+/// the interior critical point (when inside) or lies on one of the four
+/// edges, each a point-segment distance.
+double segmentDistance(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  double best = std::min({pointSegmentDistance2(p0, q0, q1), pointSegmentDistance2(p1, q0, q1),
+                          pointSegmentDistance2(q0, p0, p1), pointSegmentDistance2(q1, p0, p1)});
+  Vec3d u = p1 - p0, v = q1 - q0, w = p0 - q0;
+  double a = dot(u, u), b = dot(u, v), c = dot(v, v), d = dot(u, w), e = dot(v, w);
+  double det = a * c - b * b;
+  if (det > 1e-12 * a * c) {
+    double s = (b * e - c * d) / det, t = (a * e - b * d) / det;
+    if (s >= 0 && s <= 1 && t >= 0 && t <= 1) best = std::min(best, squaredLength(w + u * s - v * t));
+  }
+  return std::sqrt(best);
+}
+
+double distance(const CameraSegment& seg, const Beam& beam) {
+  Vec3d o = toD(seg.ray.o), bo = toD(beam.origin);
+  return segmentDistance(o, o + toD(seg.ray.d) * double(seg.tMax), bo, bo + toD(beam.direction) * double(beam.length));
+}
+
+Vec3f randomDirection(PCG32& rng) {
+  float z = 1.0f - 2.0f * rng.nextFloat(), phi = 2.0f * Pi * rng.nextFloat();
+  float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  return {s * std::cos(phi), s * std::sin(phi), z};
+}
+
+Point3f randomPoint(PCG32& rng) { return {rng.nextFloat(), rng.nextFloat(), rng.nextFloat()}; }
+
+Beam makeBeam(const Point3f& o, const Vec3f& d, float length) {
+  Beam b;
+  b.origin = o;
+  b.direction = d;
+  b.length = length;
+  return b;
+}
+
+/// Beams in the unit cube with lengths of a medium with mean free path ~0.25.
+std::vector<Beam> randomBeams(PCG32& rng, size_t n) {
+  std::vector<Beam> beams;
+  for (size_t i = 0; i < n; ++i)
+    beams.push_back(makeBeam(randomPoint(rng), randomDirection(rng), -0.25f * std::log(1.0f - rng.nextFloat())));
+  return beams;
+}
+
+CameraSegment makeSegment(const Point3f& o, const Vec3f& d, float tMax) {
+  CameraSegment s;
+  s.ray = Ray(o, d);
+  s.tMax = tMax;
+  return s;
+}
+
+CameraSegment randomSegment(PCG32& rng) { return makeSegment(randomPoint(rng), randomDirection(rng), 1.5f * rng.nextFloat()); }
+
+/// Checks one query against brute force; returns {candidates, beams within radius}.
+std::pair<size_t, size_t> checkQuery(const BeamMap& map, const CameraSegment& seg, double farBound) {
+  std::vector<uint32_t> found;
+  map.query(seg, found);
+  for (size_t k = 1; k < found.size(); ++k) EXPECT_LT(found[k - 1], found[k]) << "not ascending or duplicated";
+  size_t exact = 0;
+  for (uint32_t i = 0; i < map.beams().size(); ++i) {
+    double d = distance(seg, map.beams()[i]);
+    bool candidate = std::binary_search(found.begin(), found.end(), i);
+    if (d <= map.radius()) {
+      ++exact;
+      EXPECT_TRUE(candidate) << "beam " << i << " at distance " << d << " <= radius " << map.radius() << " missed";
+    }
+    if (candidate) EXPECT_LE(d, farBound) << "beam " << i << " reported although far from the segment";
+  }
+  return {found.size(), exact};
+}
+
+/// A point of a piece's box is within sqrt(3) r of the piece's own bounding
+/// box, whose points are within the piece length of the piece: a candidate
+/// is never farther than that (plus the padding).
+double farBound(float radius, float pieceLength) { return 1.001 * (std::sqrt(3.0) * radius + pieceLength) + 1e-5; }
+
+TEST(BeamMap, SupersetOfBruteForceForEveryOption) {
+  PCG32 rng(7, 1);
+  std::vector<Beam> beams = randomBeams(rng, 1500);
+  const float radius = 0.02f;
+  std::vector<BeamMapOptions> variants(5);
+  variants[1].pieceLengthInRadii = 0.0f;  // never cut
+  variants[2].split = BeamMapOptions::Split::Median;
+  variants[3].maxLeafSize = 1;
+  variants[4].maxLeafSize = 16;
+  float longest = 0.0f;
+  for (const Beam& b : beams) longest = std::max(longest, b.length);
+  for (size_t v = 0; v < variants.size(); ++v) {
+    SCOPED_TRACE(v);
+    BeamMap map(beams, radius, variants[v]);
+    PCG32 q(11, 2);
+    for (int i = 0; i < 150; ++i) checkQuery(map, randomSegment(q), farBound(radius, longest));
+  }
+}
+
+// Boxes cost candidates: cutting beams keeps the candidate set within a small
+// factor of the exact set. femto_bench_beams measures about 2.5 candidates per
+// beam within the radius with the default pieces and 5.4 with whole beams
+// (docs/BENCHMARKS.md, "Beam map"); 4 fails if the cutting stops working.
+TEST(BeamMap, CandidatesStayNearTheExactSet) {
+  PCG32 rng(3, 4);
+  std::vector<Beam> beams = randomBeams(rng, 4000);
+  BeamMap map(beams, 0.02f);
+  PCG32 q(5, 6);
+  size_t candidates = 0, exact = 0;
+  for (int i = 0; i < 200; ++i) {
+    auto [c, e] = checkQuery(map, randomSegment(q), 10.0);
+    candidates += c;
+    exact += e;
+  }
+  ASSERT_GT(exact, 200u);  // the check below means something
+  EXPECT_LT(double(candidates), 4.0 * double(exact)) << candidates << " candidates for " << exact << " beams in range";
+  EXPECT_LE(map.pieceCount(), 4u * map.beams().size());
+  // The same check is sharp enough to see uncut beams.
+  BeamMapOptions whole;
+  whole.pieceLengthInRadii = 0.0f;
+  BeamMap uncut(beams, 0.02f, whole);
+  PCG32 q2(5, 6);
+  size_t uncutCandidates = 0;
+  for (int i = 0; i < 200; ++i) uncutCandidates += checkQuery(uncut, randomSegment(q2), 10.0).first;
+  EXPECT_GT(double(uncutCandidates), 4.0 * double(exact)) << "the bound above no longer tells cut from uncut beams";
+}
+
+TEST(BeamMap, EmptyMapFindsNothing) {
+  BeamMap map({}, 0.1f);
+  std::vector<uint32_t> out{42};
+  map.query(makeSegment({0, 0, 0}, {0, 0, 1}, 10.0f), out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(map.nodeCount(), 0u);
+  EXPECT_GT(map.memoryBytes(), 0u);
+  BeamMap moved(std::move(map));
+  moved.query(makeSegment({0, 0, 0}, {0, 0, 1}, 10.0f), out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(BeamMap, SingleBeamNearAndFar) {
+  BeamMap map({makeBeam({0, 0, 0}, {1, 0, 0}, 1.0f)}, 0.05f);
+  std::vector<uint32_t> out;
+  map.query(makeSegment({0.5f, 0.04f, -1.0f}, {0, 0, 1}, 2.0f), out);  // passes 0.04 from the beam
+  EXPECT_EQ(out, std::vector<uint32_t>{0});
+  map.query(makeSegment({0.5f, 0.3f, -1.0f}, {0, 0, 1}, 2.0f), out);  // 0.3 away
+  EXPECT_TRUE(out.empty());
+  map.query(makeSegment({0.5f, 0.0f, -1.0f}, {0, 0, 1}, 0.9f), out);  // stops 0.1 short
+  EXPECT_TRUE(out.empty());
+  map.query(makeSegment({1.2f, 0.0f, 0.0f}, {1, 0, 0}, 1.0f), out);  // beyond the beam's end
+  EXPECT_TRUE(out.empty());
+}
+
+// Axis-parallel beams have boxes that are flat but for the radius; with
+// radius 0 they are flat up to the padding. Axis-parallel camera segments
+// have zero direction components (the slab test's 0 * inf case), here with
+// origins exactly on box planes.
+TEST(BeamMap, AxisParallelBeamsAndSegments) {
+  std::vector<Beam> beams;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      beams.push_back(makeBeam({0.0f, 0.1f * i, 0.1f * j}, {1, 0, 0}, 1.0f));
+      beams.push_back(makeBeam({0.1f * i, 0.0f, 0.1f * j}, {0, 1, 0}, 1.0f));
+    }
+  for (float radius : {0.0f, 0.01f}) {
+    SCOPED_TRACE(radius);
+    BeamMap map(beams, radius);
+    std::vector<uint32_t> out;
+    // A segment along y at x = 0.3, z = 0.5 crosses every x-beam of the
+    // slice z = 0.5 (distance 0).
+    map.query(makeSegment({0.3f, -0.5f, 0.5f}, {0, 1, 0}, 2.0f), out);
+    for (int i = 0; i < 10; ++i) EXPECT_TRUE(std::binary_search(out.begin(), out.end(), uint32_t(2 * (i * 10 + 5))));
+    // Along z, starting exactly on a beam: distance 0 to beams at that (x, y).
+    map.query(makeSegment({0.5f, 0.2f, 0.0f}, {0, 0, 1}, 1.0f), out);
+    EXPECT_TRUE(std::binary_search(out.begin(), out.end(), uint32_t(2 * (2 * 10 + 0))));
+    PCG32 rng(1, 9);
+    for (int k = 0; k < 100; ++k) {
+      Vec3f axis = k % 3 == 0 ? Vec3f(1, 0, 0) : (k % 3 == 1 ? Vec3f(0, 1, 0) : Vec3f(0, 0, 1));
+      // Origins snapped to the beam lattice put them on slab planes.
+      Point3f o(0.1f * float(rng.nextUInt(10)), 0.1f * float(rng.nextUInt(10)), 0.1f * float(rng.nextUInt(10)));
+      if (radius > 0) o[int(rng.nextUInt(3))] += radius;  // exactly at the radius from a beam
+      checkQuery(map, makeSegment(o - axis * 0.3f, axis, 1.5f), farBound(radius, 1.0f));
+    }
+  }
+}
+
+TEST(BeamMap, VeryLongBeams) {
+  PCG32 rng(21, 1);
+  std::vector<Beam> beams = randomBeams(rng, 300);
+  for (int i = 0; i < 50; ++i) {
+    Vec3f d = randomDirection(rng);
+    beams.push_back(makeBeam(Point3f(0.5f) - d * 500.0f, d, 1000.0f));  // through the cube, far out both ways
+  }
+  BeamMap map(beams, 0.01f);
+  EXPECT_LE(map.pieceCount(), 4u * beams.size());
+  PCG32 q(2, 2);
+  for (int i = 0; i < 200; ++i) checkQuery(map, randomSegment(q), 1e9);
+}
+
+TEST(BeamMap, DegenerateSegments) {
+  PCG32 rng(4, 4);
+  BeamMap map(randomBeams(rng, 500), 0.05f);
+  std::vector<uint32_t> out;
+  for (int i = 0; i < 100; ++i) {
+    Point3f p = randomPoint(rng);
+    checkQuery(map, makeSegment(p, randomDirection(rng), 0.0f), 1e9);  // a point
+    checkQuery(map, makeSegment(p, Vec3f(0.0f), 1.0f), 1e9);           // zero direction
+  }
+  // An infinite segment finds what a segment far past the cube finds.
+  Point3f o(0.5f, 0.5f, -2.0f);
+  Vec3f d = normalize(Vec3f(0.1f, 0.2f, 1.0f));
+  std::vector<uint32_t> far;
+  map.query(makeSegment(o, d, Infinity), out);
+  map.query(makeSegment(o, d, 100.0f), far);
+  EXPECT_EQ(out, far);
+  EXPECT_FALSE(out.empty());
+  for (float bad : {-1.0f, std::nanf("")}) {
+    map.query(makeSegment(o, d, bad), out);
+    EXPECT_TRUE(out.empty()) << bad;
+  }
+  map.query(makeSegment(Point3f(std::nanf("")), d, 1.0f), out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(BeamMap, ConcurrentQueriesAndRebuildsAgree) {
+  PCG32 rng(8, 8);
+  std::vector<Beam> beams = randomBeams(rng, 3000);
+  BeamMap map(beams, 0.02f), again(beams, 0.02f);
+  EXPECT_EQ(map.nodeCount(), again.nodeCount());
+  EXPECT_EQ(map.memoryBytes(), again.memoryBytes());
+  std::vector<CameraSegment> segs;
+  for (int i = 0; i < 400; ++i) segs.push_back(randomSegment(rng));
+  std::vector<std::vector<uint32_t>> serial(segs.size()), parallel(segs.size());
+  for (size_t i = 0; i < segs.size(); ++i) map.query(segs[i], serial[i]);
+  tbb::parallel_for(size_t(0), segs.size(), [&](size_t i) { again.query(segs[i], parallel[i]); });
+  EXPECT_EQ(serial, parallel);
+}
+
+TEST(BeamMap, RejectsBadInput) {
+  Beam ok = makeBeam({0, 0, 0}, {0, 0, 1}, 1.0f);
+  EXPECT_THROW(BeamMap({ok}, -0.1f), Error);
+  EXPECT_THROW(BeamMap({ok}, Infinity), Error);
+  Beam nan = ok;
+  nan.origin.x = std::nanf("");
+  try {
+    BeamMap map({ok, nan}, 0.1f);
+    FAIL() << "a NaN beam was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("beam 1"), std::string::npos) << e.what();
+  }
+  Beam negative = ok;
+  negative.length = -1.0f;
+  EXPECT_THROW(BeamMap({negative}, 0.1f), Error);
+  BeamMapOptions options;
+  options.maxLeafSize = 0;
+  EXPECT_THROW(BeamMap({ok}, 0.1f, options), Error);
+}
+
+}  // namespace
+}  // namespace femto::beams

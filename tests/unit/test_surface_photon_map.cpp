@@ -1,0 +1,139 @@
+// SurfacePhotonMap: radius queries equal brute force exactly (the same
+// inclusive test |x - p|^2 <= r^2), for photons on surfaces and in volume,
+// small and large radii, both constructors; empty maps; every photon in one
+// cell; bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include <femto/core/error.h>
+#include <femto/math/constants.h>
+#include <femto/math/pcg32.h>
+#include <transient_beams/surface_photon_map.h>
+
+namespace femto::beams {
+namespace {
+
+SurfacePhoton photonAt(const Point3f& p) {
+  SurfacePhoton ph;
+  ph.p = p;
+  return ph;
+}
+
+/// Photons on the six faces of the unit cube (the walls of a box scene),
+/// plus a few in its volume.
+std::vector<SurfacePhoton> wallPhotons(PCG32& rng, size_t n) {
+  std::vector<SurfacePhoton> photons;
+  for (size_t i = 0; i < n; ++i) {
+    Point3f p(rng.nextFloat(), rng.nextFloat(), rng.nextFloat());
+    if (i % 10 != 0) p[int(rng.nextUInt(3))] = rng.nextUInt(2) ? 1.0f : 0.0f;
+    photons.push_back(photonAt(p));
+  }
+  return photons;
+}
+
+std::vector<uint32_t> bruteForce(const std::vector<SurfacePhoton>& photons, const Point3f& p, float radius) {
+  std::vector<uint32_t> out;
+  for (uint32_t i = 0; i < photons.size(); ++i)
+    if (squaredLength(photons[i].p - p) <= radius * radius) out.push_back(i);
+  return out;
+}
+
+void expectSameAsBruteForce(const SurfacePhotonMap& map, const Point3f& p, float radius) {
+  std::vector<uint32_t> found;
+  map.query(p, radius, found);
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, bruteForce(map.photons(), p, radius)) << "at " << p << " radius " << radius;
+}
+
+TEST(SurfacePhotonMap, EqualsBruteForce) {
+  PCG32 rng(1, 2);
+  std::vector<SurfacePhoton> photons = wallPhotons(rng, 20000);
+  SurfacePhotonMap guessed(photons), sized(photons, 0.02f);
+  EXPECT_NEAR(sized.cellSize(), 0.02f, 1e-7f);
+  // Radii around, below and far above the cell size (the last scans all).
+  for (float radius : {0.0f, 0.005f, 0.02f, 0.05f, 0.3f, 3.0f})
+    for (int i = 0; i < 40; ++i) {
+      // Query points on the walls, in the volume and outside the photons' box.
+      Point3f p(1.4f * rng.nextFloat() - 0.2f, 1.4f * rng.nextFloat() - 0.2f, 1.4f * rng.nextFloat() - 0.2f);
+      if (i % 2) p = photons[rng.nextUInt(uint32_t(photons.size()))].p;
+      expectSameAsBruteForce(guessed, p, radius);
+      expectSameAsBruteForce(sized, p, radius);
+    }
+}
+
+TEST(SurfacePhotonMap, PhotonsExactlyAtTheRadiusCount) {
+  SurfacePhotonMap map({photonAt({0.3f, 0, 0}), photonAt({0, -0.25f, 0}), photonAt({0, 0, 0.3001f})}, 0.01f);
+  std::vector<uint32_t> out;
+  map.query({0, 0, 0}, 0.3f, out);
+  std::sort(out.begin(), out.end());
+  EXPECT_EQ(out, (std::vector<uint32_t>{0, 1}));
+}
+
+TEST(SurfacePhotonMap, EmptyMaps) {
+  std::vector<uint32_t> out{7};
+  SurfacePhotonMap none;
+  none.query({0, 0, 0}, 1.0f, out);
+  EXPECT_TRUE(out.empty());
+  SurfacePhotonMap empty(std::vector<SurfacePhoton>{}, 0.1f);
+  out = {7};
+  empty.query({0, 0, 0}, 1.0f, out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(empty.size(), 0u);
+}
+
+TEST(SurfacePhotonMap, AllPhotonsInOneCell) {
+  PCG32 rng(5, 5);
+  std::vector<SurfacePhoton> cluster, point;
+  for (int i = 0; i < 2000; ++i) {
+    cluster.push_back(photonAt(Point3f(0.5f) + Vec3f(rng.nextFloat(), rng.nextFloat(), 0.0f) * 1e-3f));
+    point.push_back(photonAt(Point3f(0.25f, 0.5f, 0.75f)));
+  }
+  SurfacePhotonMap clusterMap(cluster, 0.1f), clusterGuess(cluster), pointMap(point, 0.1f), pointGuess(point);
+  for (float radius : {0.0f, 2e-4f, 5e-4f, 0.01f}) {
+    for (int i = 0; i < 10; ++i) {
+      Point3f p = Point3f(0.5f) + Vec3f(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * 1.2e-3f;
+      expectSameAsBruteForce(clusterMap, p, radius);
+      expectSameAsBruteForce(clusterGuess, p, radius);
+    }
+    expectSameAsBruteForce(pointMap, {0.25f, 0.5f, 0.75f}, radius);
+    expectSameAsBruteForce(pointGuess, {0.25f, 0.5f, 0.75f}, radius);
+    expectSameAsBruteForce(pointGuess, {0.25f, 0.5f, 0.76f}, radius);
+  }
+}
+
+TEST(SurfacePhotonMap, ConcurrentQueriesAreDeterministic) {
+  PCG32 rng(9, 9);
+  std::vector<SurfacePhoton> photons = wallPhotons(rng, 5000);
+  SurfacePhotonMap map(photons, 0.03f), again(photons, 0.03f);
+  std::vector<Point3f> points;
+  for (int i = 0; i < 500; ++i) points.push_back(photons[rng.nextUInt(5000)].p);
+  std::vector<std::vector<uint32_t>> serial(points.size()), parallel(points.size());
+  for (size_t i = 0; i < points.size(); ++i) map.query(points[i], 0.03f, serial[i]);
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) { again.query(points[i], 0.03f, parallel[i]); });
+  EXPECT_EQ(serial, parallel);  // same photons, same order
+}
+
+TEST(SurfacePhotonMap, RejectsBadInput) {
+  EXPECT_THROW(SurfacePhotonMap({photonAt({0, 0, 0})}, 0.0f), Error);
+  EXPECT_THROW(SurfacePhotonMap({photonAt({0, 0, 0})}, std::nanf("")), Error);
+  try {
+    SurfacePhotonMap map({photonAt({0, 0, 0}), photonAt({Infinity, 0, 0})}, 0.1f);
+    FAIL() << "a photon at infinity was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("photon 1"), std::string::npos) << e.what();
+  }
+  std::vector<uint32_t> out{1};
+  SurfacePhotonMap map({photonAt({0, 0, 0})}, 0.1f);
+  map.query({0, 0, 0}, std::nanf(""), out);
+  EXPECT_TRUE(out.empty());
+  map.query({0, 0, 0}, -1.0f, out);
+  EXPECT_TRUE(out.empty());
+}
+
+}  // namespace
+}  // namespace femto::beams
