@@ -107,6 +107,18 @@ TEST(SeedScenes, EachLoadsStrictlyAndRendersFiniteLight) {
   }
 }
 
+TEST(SeedScenes, ArmadilloSceneFindsTheSharedMeshByDefault) {
+  // The default `mesh` is relative to the scene file: ../shared/meshes beside
+  // the repository (never committed: research-use licence).
+  auto armadillo = std::filesystem::path(FEMTO_SOURCE_DIR) / "../shared/meshes/armadillo.obj";
+  if (!std::filesystem::exists(armadillo)) GTEST_SKIP() << "no " << armadillo << " beside the repository";
+  auto scene = loadSeedScene("seed-glass-armadillo", {});
+  // A ray at mid-height toward the back wall (z = -2.5) meets the figure first (|z| < 0.6).
+  std::vector<float> t = surfacesAlong(*scene, Ray(Point3f(0.0f, 0.8f, 3.0f), Vec3f(0, 0, -1)), 1);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_NEAR(t[0], 3.0f, 0.6f) << "the figure stands at the origin";
+}
+
 TEST(SeedScenes, GlassBallDelaysTheCausticByEtaMinusOneTimesItsDiameter) {
   // A smaller light sharpens the caustic's arrival; the geometry is otherwise the shipped file's.
   const float eta = 1.5f;
