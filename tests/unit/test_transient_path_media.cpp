@@ -9,6 +9,7 @@
 
 #include "media_test_util.h"
 #include "plugin_util.h"
+#include "single_scattering_model.h"
 #include "transient_test_util.h"
 
 using namespace femto;
@@ -32,39 +33,6 @@ std::shared_ptr<Scene> singleScatteringScene(const std::string& phaseParams = ""
 </scene>)"));
 }
 
-/// Along the camera ray x(s) = s d, light arrives scattered at s after
-/// travelling l(s) = |x(s) - light|, so at OPL tau(s) = s + l(s) (eta = 1).
-/// Its radiance, per unit s, is sigma_s f_p I / l^2 exp(-sigma_t (s + l));
-/// per unit tau it is that divided by d tau / ds = 1 + d.(x - light) / l >= 0.
-/// The integral over a tau bin is the integral over the s interval that maps
-/// to it (tau is monotonic in s), computed here by Simpson's rule.
-struct SingleScattering {
-  Vec3f d;
-  double l(double s) const { return distance(Point3f(d * float(s)), kLight); }
-  double tau(double s) const { return s + l(s); }
-  double perUnitS(double s) const {
-    double ls = l(s);
-    return kSigmaS * Inv4Pi * kIntensity / (ls * ls) * std::exp(-kSigmaT * (s + ls));
-  }
-  /// s with tau(s) = t (bisection; tau increases with s).
-  double sOfTau(double t) const {
-    double lo = 0.0, hi = 1.0;
-    while (tau(hi) < t) hi *= 2.0;
-    for (int i = 0; i < 100; ++i) {
-      double mid = 0.5 * (lo + hi);
-      (tau(mid) < t ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  }
-  double binIntegral(double t0, double t1) const {
-    double a = t0 <= tau(0.0) ? 0.0 : sOfTau(t0), b = sOfTau(t1);
-    const int n = 200 + 2 * int(std::ceil(100.0 * (b - a)));  // Simpson needs an even count; h <= 0.01
-    double h = (b - a) / n, sum = perUnitS(a) + perUnitS(b);
-    for (int i = 1; i < n; ++i) sum += perUnitS(a + i * h) * (i % 2 ? 4.0 : 2.0);
-    return sum * h / 3.0;
-  }
-};
-
 }  // namespace
 
 TEST(TransientPathMedia, SingleScatteringOplHistogramMatchesClosedForm) {
@@ -72,7 +40,7 @@ TEST(TransientPathMedia, SingleScatteringOplHistogramMatchesClosedForm) {
   const TransientIntegrator& integrator = transientIntegrator(*scene);
   for (Vec3f d : {normalize(Vec3f(0.3f, 0.1f, 1.0f)), normalize(Vec3f(-1.0f, 0.5f, -0.2f))}) {
     SCOPED_TRACE(str("direction ", d));
-    SingleScattering model{d};
+    SingleScattering model{d, kLight, kIntensity, kSigmaS, kSigmaT};
     const double tau0 = model.tau(0.0), width = 6.0;
     const int bins = 24, n = 200000;
     std::vector<Mean> histogram(bins);

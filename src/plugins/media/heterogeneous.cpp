@@ -131,6 +131,9 @@ class HeterogeneousMedium final : public Medium {
   }
 
   Color3f majorant() const override { return sigmaT_ * density_->maxFloat(); }
+  Color3f scatteringCoefficient(const Point3f& p) const override {
+    return sigmaT_ * density_->evalFloat(p) * albedoAt(p);
+  }
 
   std::string toString() const override {
     return str("HeterogeneousMedium[sigma_t=", sigmaT_, ", density=", density_->toString(), ", albedo=",

@@ -61,6 +61,7 @@ class HomogeneousMedium final : public Medium {
 
   Color3f transmittance(const Ray&, float tMax, Sampler&) const override { return transmittance(tMax); }
   Color3f majorant() const override { return sigmaT_; }
+  Color3f scatteringCoefficient(const Point3f&) const override { return sigmaS_; }
   bool isHomogeneous() const override { return true; }
 
   std::string toString() const override {

@@ -45,6 +45,11 @@ Medium::Medium(const Properties& props)
 
 Medium::~Medium() = default;
 
+Color3f Medium::scatteringCoefficient(const Point3f&) const {
+  throw Error(str(toString(), " does not report its scattering coefficient (needed by density estimators such as "
+                              "transient_beams)"));
+}
+
 std::string Medium::mediumString() const { return str("eta=", eta_, ", phase=", phase_->toString()); }
 
 }  // namespace femto

@@ -69,6 +69,10 @@ class Medium : public Object {
   /// Upper bound of the extinction coefficient sigma_t anywhere in the medium
   /// (per channel), the majorant of delta/ratio tracking.
   virtual Color3f majorant() const = 0;
+  /// Scattering coefficient sigma_s at `p` (density estimators such as photon
+  /// beams evaluate it where a camera ray meets a beam). The default throws
+  /// femto::Error naming the medium.
+  virtual Color3f scatteringCoefficient(const Point3f& p) const;
   /// Constant coefficients (transmittance needs no random numbers).
   virtual bool isHomogeneous() const { return false; }
 

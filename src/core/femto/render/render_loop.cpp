@@ -167,16 +167,39 @@ RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options,
 
 RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
                               const CameraRadianceFunction& radiance) {
+  return renderSteadyPasses(scene, options, 1, [&](int) { return radiance; });
+}
+
+uint64_t passSeed(uint64_t seed, int pass) { return pass == 0 ? seed : mixSeed(seed, uint64_t(pass)); }
+
+void accumulatePassStats(RenderStats& total, const RenderStats& pass) {
+  total.samples += pass.samples;
+  total.invalidSamples += pass.invalidSamples;
+  total.seconds += pass.seconds;
+  total.completed = pass.completed;
+}
+
+RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options, int passes,
+                               const PassRadianceFunction& radianceOf) {
   const Sensor& sensor = scene.sensor();
   const Film& film = sensor.film();
+  // Every pass splats the same number of samples per pixel into one block:
+  // its developed value (weighted sum / weight sum) is the mean of the passes.
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
-  auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
-    Ray ray;
-    Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
-    if (weight.isBlack()) return Color3f(0.0f);
-    return weight * radiance(ray, sampler);
-  };
-  RenderStats stats = renderTiles(scene, options, sampleFn, result);
+  RenderStats stats;
+  for (int pass = 0; pass < passes; ++pass) {
+    CameraRadianceFunction radiance = radianceOf(pass);
+    auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
+      Ray ray;
+      Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
+      if (weight.isBlack()) return Color3f(0.0f);
+      return weight * radiance(ray, sampler);
+    };
+    RenderOptions passOptions = options;
+    passOptions.seed = passSeed(options.seed, pass);
+    accumulatePassStats(stats, renderTiles(scene, passOptions, sampleFn, result));
+    if (!stats.completed) break;
+  }
   if (!options.output.empty()) film.develop(result, options.output);
   return stats;
 }

@@ -69,4 +69,22 @@ using CameraRadianceFunction = std::function<Color3f(const Ray& ray, Sampler& sa
 RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
                               const CameraRadianceFunction& radiance);
 
+/// The seed of pass `pass` of a progressive render: pass 0 keeps `seed` (a
+/// one-pass render is the ordinary one), later passes mix in their index.
+uint64_t passSeed(uint64_t seed, int pass);
+
+/// Progressive rendering (photon beams, Jarosz et al. 2011 "Progressive
+/// Photon Beams"): `passes` independent estimates of the whole image, each
+/// seeded with passSeed, averaged with equal weights. `radianceOf(pass)` is
+/// called serially before each pass; what it captures (that pass's photon
+/// maps) is released when the pass ends, so memory is that of one pass.
+/// renderSteadyImage is the one-pass case. A cancel stops after the pass in flight.
+using PassRadianceFunction = std::function<CameraRadianceFunction(int pass)>;
+RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options, int passes,
+                               const PassRadianceFunction& radianceOf);
+
+/// Adds a pass's statistics to a running total (samples and invalid samples
+/// summed, seconds summed, completed only while every pass completed).
+void accumulatePassStats(RenderStats& total, const RenderStats& pass);
+
 }  // namespace femto

@@ -27,15 +27,22 @@ class SumRecorder final : public RadianceRecorder {
   TimeGrid grid_;  // bins == 0: steady
 };
 
-RenderStats renderTransient(const TransientIntegrator& integrator, const Scene& scene, const TransientFilm& film,
-                            const RenderOptions& options) {
+RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const RenderOptions& options, int passes,
+                            const TransientPassFunction& passIntegrator) {
   TransientOutput output(film, options.output);
-  TransientRenderContext context{scene, integrator, film.timeDeposit()};
-  auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
-    return std::make_unique<TransientTile>(offset, size, context);
-  };
-  auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile)); };
-  RenderStats stats = renderTileStream(scene, options, makeTile, consume);
+  RenderStats stats;
+  for (int pass = 0; pass < passes; ++pass) {
+    std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, film.timeDeposit().horizon());
+    TransientRenderContext context{scene, *integrator, film.timeDeposit()};
+    auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
+      return std::make_unique<TransientTile>(offset, size, context);
+    };
+    auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile), pass); };
+    RenderOptions passOptions = options;
+    passOptions.seed = passSeed(options.seed, pass);
+    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume));
+    if (!stats.completed) break;
+  }
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0)
     tbb::task_arena(options.threads).execute([&] { output.finish(); });
@@ -46,14 +53,25 @@ RenderStats renderTransient(const TransientIntegrator& integrator, const Scene& 
 
 }  // namespace
 
-RenderStats TransientIntegrator::render(const Scene& scene, const RenderOptions& options) const {
+RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
+                                  const TransientPassFunction& passIntegrator) {
   if (auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film()))
-    return renderTransient(*this, scene, *film, options);
-  return renderSteadyImage(scene, options, [&](const Ray& ray, Sampler& sampler) {
-    SumRecorder recorder;
-    sample(scene, ray, sampler, recorder);
-    return recorder.sum;
+    return renderTransient(scene, *film, options, passes, passIntegrator);
+  return renderSteadyPasses(scene, options, passes, [&](int pass) -> CameraRadianceFunction {
+    std::shared_ptr<const TransientIntegrator> integrator =
+        passIntegrator(pass, std::numeric_limits<double>::infinity());
+    return [&scene, integrator](const Ray& ray, Sampler& sampler) {
+      SumRecorder recorder;
+      integrator->sample(scene, ray, sampler, recorder);
+      return recorder.sum;
+    };
   });
+}
+
+RenderStats TransientIntegrator::render(const Scene& scene, const RenderOptions& options) const {
+  // Not owned: the pass function hands out this integrator itself.
+  std::shared_ptr<const TransientIntegrator> self(std::shared_ptr<void>(), this);
+  return renderTransientPasses(scene, options, 1, [&](int, double) { return self; });
 }
 
 }  // namespace femto

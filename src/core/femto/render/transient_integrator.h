@@ -4,6 +4,9 @@
 // it reaches the sensor. The core's render loop routes those contributions to
 // a transient film (binned in time) or, for a steady film, just sums them, so
 // the same integrator renders both.
+#include <functional>
+#include <memory>
+
 #include <femto/math/ray.h>
 #include <femto/render/integrator.h>
 #include <femto/render/spectrum.h>
@@ -39,5 +42,19 @@ class TransientIntegrator : public Integrator {
   /// steady films the ordinary image.
   RenderStats render(const Scene& scene, const RenderOptions& options) const override;
 };
+
+/// Progressive transient rendering (photon beams): before pass `pass`, called
+/// serially with the film's horizon (Infinity for steady films), returns the
+/// integrator that renders that pass -- e.g. one holding the pass's photon
+/// maps, released when the pass ends so memory stays that of one pass.
+using TransientPassFunction = std::function<std::shared_ptr<const TransientIntegrator>(int pass, double horizon)>;
+
+/// `passes` independent renders of the whole film (pass seeds: passSeed in
+/// render_loop.h) averaged with equal weights. Transient films fold each
+/// finished tile into the streamed volume as a running mean (after a cancel
+/// the output is the mean of the passes done); steady films merge the passes'
+/// samples. TransientIntegrator::render is the one-pass case.
+RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
+                                  const TransientPassFunction& passIntegrator);
 
 }  // namespace femto

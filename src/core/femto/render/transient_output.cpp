@@ -86,15 +86,31 @@ TransientOutput::~TransientOutput() {
   }
 }
 
-void TransientOutput::consume(TransientTile& tile) {
+void TransientOutput::consume(TransientTile& tile, int pass) {
   tile.normalize();
   const Point2i origin = tile.offset() - film_.cropOffset();
+  // Running mean over passes: pass 0 stores the tile as it is.
+  const float keep = float(pass) / float(pass + 1), add = 1.0f / float(pass + 1);
+  auto fold = [&](float* stored, const float* fresh, size_t count) {
+    for (size_t k = 0; k < count; ++k) stored[k] = pass == 0 ? fresh[k] : keep * stored[k] + add * fresh[k];
+  };
+  std::vector<float> row;
+  const size_t rowFloats = size_t(tile.size().x) * size_t(tile.bins()) * 3;
   for (int y = 0; y < tile.size().y; ++y) {
-    if (volume_) volume_->writePixels(origin.y + y, origin.x, tile.size().x, tile.row(y));
+    if (volume_) {
+      if (pass == 0) {
+        volume_->writePixels(origin.y + y, origin.x, tile.size().x, tile.row(y));
+      } else {
+        row.resize(rowFloats);
+        volume_->readPixels(origin.y + y, origin.x, tile.size().x, row.data());
+        fold(row.data(), tile.row(y), rowFloats);
+        volume_->writePixels(origin.y + y, origin.x, tile.size().x, row.data());
+      }
+    }
     for (int x = 0; x < tile.size().x; ++x) {
-      std::copy_n(tile.steady(x, y), 3, steady_.pixel(origin.x + x, origin.y + y));
-      std::copy_n(tile.before(x, y), 3, before_.pixel(origin.x + x, origin.y + y));
-      std::copy_n(tile.after(x, y), 3, after_.pixel(origin.x + x, origin.y + y));
+      fold(steady_.pixel(origin.x + x, origin.y + y), tile.steady(x, y), 3);
+      fold(before_.pixel(origin.x + x, origin.y + y), tile.before(x, y), 3);
+      fold(after_.pixel(origin.x + x, origin.y + y), tile.after(x, y), 3);
     }
   }
 }

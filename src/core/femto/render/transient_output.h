@@ -26,8 +26,10 @@ class TransientOutput {
   ~TransientOutput();
 
   /// Normalise a finished tile and store it (volume rows to disk, steady,
-  /// before and after into the images).
-  void consume(TransientTile& tile);
+  /// before and after into the images). Pass `pass` > 0 of a progressive
+  /// render folds the tile into what earlier passes stored as a running mean,
+  /// old + (new - old) / (pass + 1), reading the volume rows back.
+  void consume(TransientTile& tile, int pass = 0);
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
   void finish();
