@@ -21,10 +21,12 @@ namespace femto::beams {
 struct Beam {
   Point3f origin;                  // where the piece starts (emitter, surface or scattering point)
   Vec3f direction;                 // unit length, the direction light travels
-  float length = 0.0f;             // > 0 and finite: up to the next scattering event or surface
+  float length = 0.0f;             // > 0 and finite: up to the next surface ("long" beam: the photon may scatter
+                                   // earlier; estimates weight the beam by its transmittance, Jarosz et al. 2011 sec. 5.2)
   Color3f power{0.0f};             // photon power (flux) at `origin`, before attenuation along the beam
   double opl = 0.0;                // OPL at `origin` since emission (emission offset + delays + sum eta*d)
   float eta = 1.0f;                // refractive index of the medium crossed: OPL per unit length
+  int depth = 1;                   // photon path segments up to and including this one (1: straight from the emitter)
   const Medium* medium = nullptr;  // the medium the beam crosses (never null for stored beams)
 };
 

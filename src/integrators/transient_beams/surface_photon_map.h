@@ -25,6 +25,7 @@ struct SurfacePhoton {
   Vec3f wi;            // unit, from p back toward where the photon came from
   Color3f power{0.0f}; // flux carried
   double opl = 0.0;    // OPL at arrival since emission
+  int depth = 1;       // photon path segments up to this point (1: straight from the emitter)
 };
 
 class SurfacePhotonMap {

@@ -1,0 +1,46 @@
+#pragma once
+// One pass of progressive transient photon beams: the photons traced for the
+// pass, their beam map and surface photon map, and the pass's kernel radii.
+// It renders camera samples like any transient integrator (the orchestrator,
+// transient_beams.cpp, hands one per pass to renderTransientPasses and frees
+// it when the pass ends). Immutable once built; sample() is thread-safe
+// (each thread gets its own CameraTracer scratch space).
+#include <cstdint>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <femto/render/transient_integrator.h>
+#include <transient_beams/beam_map.h>
+#include <transient_beams/beam_settings.h>
+#include <transient_beams/camera_tracer.h>
+#include <transient_beams/photon_tracer.h>
+#include <transient_beams/surface_photon_map.h>
+
+namespace femto::beams {
+
+class BeamPass final : public TransientIntegrator {
+ public:
+  /// Trace pass `pass`'s photons (seeded by `seed`; OPLs past `horizon` are
+  /// not stored) and build its maps with the pass's radii. `settings` must be
+  /// resolved (radii known).
+  BeamPass(const Scene& scene, const BeamSettings& settings, int pass, uint64_t seed, double horizon);
+  /// Maps over photons traced elsewhere (tests build passes by hand).
+  BeamPass(const BeamSettings& settings, int pass, PhotonPass traced);
+
+  void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const override;
+
+  const BeamMap& beamMap() const { return beams_; }
+  const SurfacePhotonMap& photonMap() const { return photons_; }
+  const PassMaps& maps() const { return maps_; }
+  std::string toString() const override;
+
+ private:
+  BeamSettings settings_;
+  BeamMap beams_;
+  SurfacePhotonMap photons_;
+  PassMaps maps_;
+  mutable tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch_;
+};
+
+}  // namespace femto::beams

@@ -1,0 +1,77 @@
+#include <transient_beams/beam_settings.h>
+
+#include <cmath>
+#include <string>
+
+namespace femto::beams {
+namespace {
+
+/// Default radii as fractions of the scene's bounding-box diagonal: small
+/// enough that the kernel blur stays below a pixel's footprint in typical
+/// views, large enough for ~1e5 photons to give a usable first pass.
+constexpr float kBeamRadiusFraction = 0.005f, kSurfaceRadiusFraction = 0.01f;
+
+/// Product over passes 0..pass-1 of (i + alpha) / (i + 1).
+double reduction(float alpha, int pass) {
+  double f = 1.0;
+  for (int i = 0; i < pass; ++i) f *= (double(i) + alpha) / double(i + 1);
+  return f;
+}
+
+}  // namespace
+
+BeamSettings BeamSettings::parse(const Properties& props) {
+  BeamSettings s;
+  s.location = props.location();
+  int64_t passes = props.getInt("passes", 1);
+  if (passes < 1 || passes > 1000000) props.raise("passes", str("must be between 1 and 1000000, got ", passes));
+  s.passes = int(passes);
+  s.photonCount = props.getInt("photon_count", s.photonCount);
+  if (s.photonCount < 1 || s.photonCount > (int64_t(1) << 32))
+    props.raise("photon_count", str("must be between 1 and 2^32 photons per pass, got ", s.photonCount));
+  auto readRadius = [&](const char* name) {
+    if (!props.has(name)) return 0.0f;
+    float r = props.getFloat(name);
+    if (!(r > 0.0f) || !std::isfinite(r)) props.raise(name, str("must be a finite radius > 0 (scene units), got ", r));
+    return r;
+  };
+  s.radius = readRadius("radius");
+  s.surfaceRadius = readRadius("surface_radius");
+  s.alpha = props.getFloat("alpha", s.alpha);
+  if (!(s.alpha > 0.0f && s.alpha <= 1.0f)) props.raise("alpha", str("must lie in (0, 1], got ", s.alpha));
+  int64_t maxDepth = props.getInt("max_depth", -1);
+  if (maxDepth < -1 || maxDepth > 100000) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth));
+  s.maxDepth = int(maxDepth);
+  int64_t rrDepth = props.getInt("rr_depth", s.rrDepth);
+  if (rrDepth < 1 || rrDepth > 100000) props.raise("rr_depth", str("must be at least 1, got ", rrDepth));
+  s.rrDepth = int(rrDepth);
+  std::string store = props.getString("store", "all");
+  if (store == "all")
+    s.store = BeamStore::All;
+  else if (store == "single")
+    s.store = BeamStore::Single;
+  else
+    props.raise("store", str("must be \"all\" (every scattering order) or \"single\" (single scattering), got \"",
+                             store, "\""));
+  s.observerTime = props.getBool("observer_time", true);
+  s.hideEmitters = props.getBool("hide_emitters", false);
+  return s;
+}
+
+BeamSettings BeamSettings::resolved(const BoundingBox3f& sceneBounds) const {
+  BeamSettings s = *this;
+  if (s.radius > 0.0f && s.surfaceRadius > 0.0f) return s;
+  float diagonal = 2.0f * sceneBounds.boundingRadius();
+  if (!(diagonal > 0.0f) || !std::isfinite(diagonal))
+    throw Error(location, "transient_beams: the scene has no finite extent to derive the kernel radii from; give "
+                          "\"radius\" and \"surface_radius\"");
+  if (!(s.radius > 0.0f)) s.radius = kBeamRadiusFraction * diagonal;
+  if (!(s.surfaceRadius > 0.0f)) s.surfaceRadius = kSurfaceRadiusFraction * diagonal;
+  return s;
+}
+
+float BeamSettings::beamRadius(int pass) const { return float(radius * reduction(alpha, pass)); }
+
+float BeamSettings::surfaceRadiusOf(int pass) const { return float(surfaceRadius * std::sqrt(reduction(alpha, pass))); }
+
+}  // namespace femto::beams

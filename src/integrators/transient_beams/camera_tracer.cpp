@@ -1,0 +1,185 @@
+#include <transient_beams/camera_tracer.h>
+
+#include <cmath>
+
+#include <femto/math/constants.h>
+#include <femto/render/bsdf.h>
+#include <femto/render/direct_lighting.h>
+#include <femto/render/medium.h>
+#include <femto/render/sampler.h>
+#include <femto/render/scene.h>
+#include <femto/render/transient_integrator.h>
+#include <femto/render/volumetric.h>
+#include <transient_beams/medium_extent.h>
+#include <transient_beams/ray_beam.h>
+
+namespace femto::beams {
+namespace {
+
+/// Index-matched boundaries crossed in a row before a path is abandoned.
+constexpr int kMaxPassThrough = 256;
+/// Specular bounces before a camera path is abandoned (max_depth may be unlimited).
+constexpr int kMaxSpecularBounces = 64;
+/// Photons arriving this close to grazing (|cos| w.r.t. the shading normal)
+/// are skipped: f = eval / |cos| would divide by rounding noise.
+constexpr float kMinPhotonCosine = 1e-4f;
+
+}  // namespace
+
+/// The mutable state of one camera path.
+struct CameraTracer::Path {
+  Ray ray;                    // ray.o may be offset off a surface; `vertex` is exact
+  Point3f vertex;             // where the current segment starts
+  const Medium* medium = nullptr;
+  float surfaceEta = 1.0f;    // refractive index where there is no medium
+  double opl = 0.0;           // OPL at `vertex`
+  bool cameraSegment = true;  // no (specular) scattering vertex yet
+  Color3f throughput{1.0f};
+  int segments = 0;           // camera segments completed before the current one
+};
+
+void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) {
+  if (settings_.maxDepth == 0) return;
+  const double horizon = recorder.horizon();
+  Path s;
+  s.ray = Ray(cameraRay.o, cameraRay.d);
+  s.medium = scene.sensor().medium();
+  s.vertex = cameraRay.o;
+  ScatterOrigin prev;  // camera rays and specular bounces: emission found by a ray counts fully
+  prev.delta = true;
+  for (int passThrough = 0, bounces = 0; passThrough < kMaxPassThrough && bounces < kMaxSpecularBounces;) {
+    SurfaceInteraction si;
+    bool hit = scene.rayIntersect(s.ray, si);
+    if (s.medium) {
+      float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, horizon);
+      if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(s, tMax, sampler, recorder);
+      if (!hit) return;  // escaping through a medium: attenuated to nothing
+      s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
+      if (s.throughput.isBlack()) return;
+    }
+    const int depth = s.segments + 1;  // the segment just travelled
+    if (!hit) {
+      if (!(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth)) {
+        Color3f Le = environmentFound(scene, s.ray, prev);
+        if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
+      }
+      return;
+    }
+    float eta = s.medium ? s.medium->eta() : s.surfaceEta;
+    // OPL between exact vertices: ray offsets off surfaces must not shorten it.
+    if (settings_.observerTime || !s.cameraSegment) s.opl += double(eta) * distance(s.vertex, si.p);
+    s.vertex = si.p;
+    if (!std::isfinite(s.opl) || s.opl >= horizon) return;
+    if (si.emitter() && !(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth)) {
+      Color3f Le = emissionFound(scene, si, s.ray.d, si.t, prev);  // prev.delta: the distance is unused
+      if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
+    }
+    if (isPassThrough(si)) {
+      s.medium = mediumAfter(si, s.ray.d, s.medium);
+      s.ray = si.spawnRay(s.ray.d);
+      ++passThrough;
+      continue;
+    }
+    s.segments = depth;
+    const BSDF& bsdf = *si.bsdf();
+    if (bsdf.hasSmooth()) {
+      nextEvent(scene, s, si, sampler, recorder);
+      gatherSurfacePhotons(s, si, recorder);
+      if (!(bsdf.flags() & BSDFFlags::Delta)) return;
+    }
+    // Follow the specular components (mirror, glass, a coating's reflection):
+    // a sample that picks a smooth component ends the path, which the
+    // estimates above already covered.
+    BSDFSample bs;
+    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
+    if (!(bs.pdf > 0.0f) || weight.isBlack() || !(bs.sampledFlags & BSDFFlags::Delta)) return;
+    if (!settings_.depthAllowed(s.segments + 1)) return;
+    Vec3f wo = si.toWorld(bs.wo);
+    s.throughput *= weight;
+    s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
+    s.medium = mediumAfter(si, wo, s.medium);
+    s.cameraSegment = false;
+    s.ray = si.spawnRay(wo);
+    passThrough = 0;
+    ++bounces;
+  }
+}
+
+void CameraTracer::gatherBeams(const Path& s, float tMax, Sampler& sampler, RadianceRecorder& recorder) {
+  const Medium& medium = *s.medium;
+  CameraSegment segment;
+  segment.ray = Ray(s.vertex, s.ray.d);  // from the exact vertex, where the path's OPL is s.opl
+  segment.tMax = tMax;
+  // Observer time off: the camera's first segment adds no OPL (its beams
+  // then show where light is, not when the camera sees it).
+  segment.eta = (settings_.observerTime || !s.cameraSegment) ? medium.eta() : 0.0f;
+  const std::vector<Beam>& beams = maps_.beams.beams();
+  maps_.beams.query(segment, scratch_);
+  const double horizon = recorder.horizon();
+  const double invPhotons = 1.0 / double(maps_.photonCount);
+  const PhaseFunction& phase = medium.phase();
+  for (uint32_t index : scratch_) {
+    const Beam& beam = beams[index];
+    // Beams of another medium overlapping this one (nested media) do not scatter here.
+    if (beam.medium != &medium || !settings_.depthAllowed(s.segments + 1 + beam.depth)) continue;
+    const double opl0 = s.opl + beam.opl;
+    if (!(opl0 < horizon)) continue;
+    RayBeamHit hit;
+    if (!rayBeamIntersect(segment, beam, maps_.beamRadius, hit) || !(hit.kernel > 0.0f)) continue;
+    const Point3f x = segment.ray(hit.tRay);
+    float fp = phase.eval(-s.ray.d, -beam.direction);
+    if (!(fp > 0.0f)) continue;
+    Color3f value = s.throughput * medium.scatteringCoefficient(x) * fp * beam.power *
+                    float(double(hit.kernel) * invPhotons);
+    if (value.isBlack()) continue;
+    value *= medium.transmittance(segment.ray, hit.tRay, sampler);
+    value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
+    if (value.isBlack()) continue;
+    double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
+    recorder.addInterval(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value);
+  }
+}
+
+void CameraTracer::nextEvent(const Scene& scene, const Path& s, const SurfaceInteraction& si, Sampler& sampler,
+                             RadianceRecorder& recorder) {
+  if (!settings_.depthAllowed(s.segments + 1)) return;
+  DirectionSample ds;
+  Color3f emitterWeight = scene.sampleEmitterDirection(si, sampler.next2D(), ds, false);
+  if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
+  // The light segment's OPL is at least its length (eta >= 1).
+  if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
+  // The camera path never samples the BSDF at this vertex (photons cover
+  // indirect light), so emitter sampling is the only strategy: weight 1.
+  Color3f f = si.bsdf()->eval(si, si.toLocal(ds.d));
+  if (f.isBlack()) return;
+  Connection c = connect(scene, si, ds.d, ds.p, ds.dist, mediumAfter(si, ds.d, s.medium), s.surfaceEta, sampler);
+  if (c.transmittance.isBlack()) return;
+  recorder.add(s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance);
+}
+
+void CameraTracer::gatherSurfacePhotons(const Path& s, const SurfaceInteraction& si, RadianceRecorder& recorder) {
+  const float r = maps_.surfaceRadius;
+  maps_.photons.query(si.p, r, scratch_);
+  if (scratch_.empty()) return;
+  const BSDF& bsdf = *si.bsdf();
+  // Only photons that arrived on the side the camera sees.
+  const Vec3f toCamera = si.toWorld(si.wi);
+  const Normal3f side = dot(si.n, toCamera) >= 0.0f ? si.n : -si.n;
+  const double norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount));
+  const double horizon = recorder.horizon();
+  for (uint32_t index : scratch_) {
+    const SurfacePhoton& photon = maps_.photons.photons()[index];
+    if (dot(photon.n, side) <= 0.0f || !settings_.depthAllowed(s.segments + photon.depth)) continue;
+    const double opl = s.opl + photon.opl;
+    if (!(opl < horizon)) continue;
+    Vec3f local = si.toLocal(photon.wi);
+    float cosine = std::abs(local.z);
+    if (cosine < kMinPhotonCosine) continue;
+    // eval() includes |cos wo|: divide it out to get f (Jensen's estimate uses f alone).
+    Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
+    if (f.isBlack()) continue;
+    recorder.add(opl, s.throughput * f * photon.power * float(norm));
+  }
+}
+
+}  // namespace femto::beams

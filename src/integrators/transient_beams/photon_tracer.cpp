@@ -1,0 +1,197 @@
+#include <transient_beams/photon_tracer.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/math/pcg32.h>
+#include <femto/render/bsdf.h>
+#include <femto/render/medium.h>
+#include <femto/render/sampler.h>
+#include <femto/render/scene.h>
+#include <femto/render/volumetric.h>
+#include <transient_beams/medium_extent.h>
+
+namespace femto::beams {
+namespace {
+
+/// Index-matched boundaries crossed in a row before a photon is abandoned.
+constexpr int kMaxPassThrough = 256;
+/// Photons per parallel work item: outputs are concatenated in item order.
+constexpr uint64_t kPhotonsPerBlock = 1024;
+
+/// The random numbers of one photon: a PCG32 stream restarted per photon
+/// from (pass seed, photon index), so the photon is the same on any thread.
+class PhotonSampler final : public Sampler {
+ public:
+  PhotonSampler() : Sampler(Properties()) {}
+  std::unique_ptr<Sampler> clone() const override { return std::make_unique<PhotonSampler>(); }
+  void startPixel(uint64_t seed, uint64_t index) override { rng_.seed(mixSeed(seed, index), index); }
+  void advance() override {}
+  float next1D() override { return rng_.nextFloat(); }
+  Point2f next2D() override {
+    float u = rng_.nextFloat();
+    return {u, rng_.nextFloat()};
+  }
+  std::string toString() const override { return "PhotonSampler"; }
+
+ private:
+  PCG32 rng_;
+};
+
+/// Emitters weighted by their total power (average over channels).
+Distribution1D emitterPowerDistribution(const Scene& scene) {
+  std::vector<float> weights;
+  for (const auto& emitter : scene.emitters()) weights.push_back(std::max(0.0f, emitter->power().average()));
+  if (weights.empty()) return Distribution1D();
+  return Distribution1D(std::move(weights));
+}
+
+/// The state of one photon.
+struct Photon {
+  Ray ray;                   // ray.o may be offset off a surface; `vertex` is exact
+  Point3f vertex;            // where the current segment starts (emitter, scattering or surface point)
+  Color3f power{0.0f};
+  double opl = 0.0;
+  const Medium* medium = nullptr;
+  float surfaceEta = 1.0f;   // refractive index where there is no medium
+  int depth = 1;             // segment being travelled (1: leaving the emitter)
+  bool scattered = false;    // scattered in a medium or off a non-specular surface
+  bool indirect = false;     // scattered, or bounced off a specular surface
+};
+
+}  // namespace
+
+PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, double horizon)
+    : scene_(scene),
+      settings_(settings),
+      horizon_(horizon),
+      emitterPower_(emitterPowerDistribution(scene)),
+      sampler_(std::make_unique<PhotonSampler>()) {}
+
+PhotonTracer::~PhotonTracer() = default;
+
+void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons) {
+  if (emitterPower_.size() == 0 || !(emitterPower_.integral() > 0.0f)) return;
+  Sampler& sampler = *sampler_;
+  sampler.startPixel(seed, index);
+  float pick = 0.0f;
+  const Emitter& emitter = *scene_.emitters()[emitterPower_.sampleDiscrete(sampler.next1D(), &pick)];
+  Photon ph;
+  Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
+  ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
+  // Emission time from the emitter's pulse: Dirac at OPL 0 until emitters have pulses.
+  sampler.next1D();
+  ph.opl = 0.0;
+  if (ph.power.isBlack() || !ph.power.isValid()) return;
+  ph.medium = mediumAround(scene_, ph.ray);
+  ph.vertex = ph.ray.o;
+  const float startLevel = ph.power.maxValue();
+  // The camera adds at least one segment to every photon path: a photon
+  // segment `depth` ends paths of at least depth + 1 segments.
+  for (int passThrough = 0; passThrough < kMaxPassThrough && settings_.depthAllowed(ph.depth + 1);) {
+    SurfaceInteraction si;
+    bool hit = scene_.rayIntersect(ph.ray, si);
+    float eta = ph.medium ? ph.medium->eta() : ph.surfaceEta;
+    if (ph.medium) {
+      const Medium& medium = *ph.medium;
+      if (settings_.store == BeamStore::All || !ph.scattered) {
+        // From the exact vertex, so the beam's OPL and geometry agree.
+        float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(medium, ph.opl, horizon_);
+        if (length > 0.0f && std::isfinite(length))
+          beams.push_back(Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, eta, ph.depth, &medium});
+      }
+      MediumSample ms = medium.sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
+      ph.power *= ms.weight;
+      if (ph.power.isBlack()) return;
+      if (ms.scattered) {
+        ph.opl += double(eta) * distance(ph.vertex, ms.p);
+        const PhaseFunction& phase = medium.phase();
+        if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
+        if (!(ph.opl < horizon_)) return;
+        Vec3f wo;
+        float pdf = 0.0f;
+        float weight = phase.sample(-ph.ray.d, sampler.next2D(), wo, pdf);
+        if (!(pdf > 0.0f) || !(weight > 0.0f)) return;
+        ph.power *= weight;
+        ph.ray = Ray(ms.p, wo);
+        ph.vertex = ms.p;
+        ph.scattered = ph.indirect = true;
+        ++ph.depth;
+        passThrough = 0;
+        if (!russianRoulette(ph.power, ph.depth, startLevel, sampler)) return;
+        continue;
+      }
+    }
+    if (!hit) return;
+    // OPL between exact vertices: ray offsets off surfaces must not shorten it.
+    ph.opl += double(eta) * distance(ph.vertex, si.p);
+    ph.vertex = si.p;
+    if (!(ph.opl < horizon_)) return;
+    if (isPassThrough(si)) {
+      ph.medium = mediumAfter(si, ph.ray.d, ph.medium);
+      ph.ray = si.spawnRay(ph.ray.d);
+      ++passThrough;
+      continue;
+    }
+    const BSDF& bsdf = *si.bsdf();
+    if (bsdf.hasSmooth() && ph.indirect) {
+      Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
+      photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth});
+    }
+    BSDFSample bs;
+    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
+    if (!(bs.pdf > 0.0f) || weight.isBlack()) return;
+    Vec3f wo = si.toWorld(bs.wo);
+    ph.power *= weight;
+    ph.surfaceEta *= bs.eta;
+    ph.medium = mediumAfter(si, wo, ph.medium);
+    ph.ray = si.spawnRay(wo);
+    if (bs.sampledFlags & BSDFFlags::Delta)
+      ph.indirect = true;
+    else
+      ph.scattered = ph.indirect = true;
+    ++ph.depth;
+    passThrough = 0;
+    if (!russianRoulette(ph.power, ph.depth, startLevel, sampler)) return;
+  }
+}
+
+bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const {
+  if (depth <= settings_.rrDepth) return true;
+  // Survival in proportion to the power left of what the photon started with.
+  float q = std::min(power.maxValue() / startLevel, 0.95f);
+  if (!(sampler.next1D() < q)) return false;
+  power = power / q;
+  return true;
+}
+
+PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon) {
+  PhotonPass pass;
+  pass.photonCount = uint64_t(settings.photonCount);
+  const uint64_t blocks = (pass.photonCount + kPhotonsPerBlock - 1) / kPhotonsPerBlock;
+  struct Block {
+    std::vector<Beam> beams;
+    std::vector<SurfacePhoton> photons;
+  };
+  std::vector<Block> out(blocks);
+  tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
+    // One tracer per block: cheap to make, and no thread-local state to share.
+    PhotonTracer tracer(scene, settings, horizon);
+    const uint64_t end = std::min(pass.photonCount, (b + 1) * kPhotonsPerBlock);
+    for (uint64_t i = b * kPhotonsPerBlock; i < end; ++i) tracer.trace(seed, i, out[b].beams, out[b].photons);
+  });
+  size_t beamCount = 0, photonCount = 0;
+  for (const Block& b : out) beamCount += b.beams.size(), photonCount += b.photons.size();
+  pass.beams.reserve(beamCount);
+  pass.surfacePhotons.reserve(photonCount);
+  for (Block& b : out) {
+    pass.beams.insert(pass.beams.end(), b.beams.begin(), b.beams.end());
+    pass.surfacePhotons.insert(pass.surfacePhotons.end(), b.photons.begin(), b.photons.end());
+    b = Block();
+  }
+  return pass;
+}
+
+}  // namespace femto::beams

@@ -1,0 +1,74 @@
+#pragma once
+// The photon pass of transient photon beams (Marco et al. 2017, sec. 4;
+// Jarosz et al. 2011, sec. 5): photons leave the emitters (chosen in
+// proportion to their power) and carry their optical path length exactly as
+// camera paths do -- eta times every segment's length (the medium's index, or
+// the dielectric's where there is no medium), plus phase-function scattering
+// delays -- so each stores the OPL at which it got where it is.
+//
+// * Every photon segment inside a medium becomes a Beam reaching to the next
+//   surface ("long" beam: the photon itself may scatter earlier, where its
+//   next segment starts; the camera side weights a beam by its transmittance).
+//   BeamStore::Single keeps only the beams of photons that have not scattered
+//   yet (straight from the emitter or through mirrors and glass).
+// * Photons reaching a surface with a non-specular BSDF after at least one
+//   scattering event or specular bounce become SurfacePhotons: the indirect
+//   and caustic light the camera side adds to next-event estimation (which
+//   already counts light straight from the emitters).
+// * Photons continue through index-matched boundaries, mirrors and glass
+//   (volume caustics), bounce off every BSDF (importance transport) and end
+//   by Russian roulette, at max_depth, or once their OPL passes the horizon.
+//
+// Determinism: photon i of a pass draws its random numbers from its own
+// stream, seeded by (pass seed, i), and the pass concatenates per-block
+// outputs in photon order, so the maps do not depend on the thread count.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <femto/math/distribution.h>
+#include <transient_beams/beam.h>
+#include <transient_beams/beam_settings.h>
+#include <transient_beams/surface_photon_map.h>
+
+namespace femto {
+class Scene;
+class Sampler;
+}  // namespace femto
+
+namespace femto::beams {
+
+/// What one photon pass produced. Powers are per traced photon: estimates
+/// divide by photonCount.
+struct PhotonPass {
+  std::vector<Beam> beams;
+  std::vector<SurfacePhoton> surfacePhotons;
+  uint64_t photonCount = 0;
+};
+
+/// Per-thread photon tracer (mutable state: its random stream).
+class PhotonTracer {
+ public:
+  /// `horizon`: OPL past which nothing reaches the film (Infinity: steady).
+  PhotonTracer(const Scene& scene, const BeamSettings& settings, double horizon);
+  ~PhotonTracer();
+
+  /// Trace photon `index` of the pass seeded `seed`, appending its beams and
+  /// surface photons.
+  void trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons);
+
+ private:
+  /// Russian roulette past rr_depth segments; false ends the photon.
+  bool russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const;
+
+  const Scene& scene_;
+  const BeamSettings& settings_;
+  double horizon_;
+  Distribution1D emitterPower_;
+  std::unique_ptr<Sampler> sampler_;
+};
+
+/// All photons of one pass (settings.photonCount), traced in parallel.
+PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon);
+
+}  // namespace femto::beams

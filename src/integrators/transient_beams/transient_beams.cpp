@@ -1,0 +1,93 @@
+// transient_beams: progressive transient photon beams (Marco, Jarosz,
+// Gutierrez, Jarabo 2017, "Transient Photon Beams"; progressive form after
+// Jarosz et al. 2011, "Progressive Photon Beams"). The orchestrator: it owns
+// the passes; each pass traces fresh photons (photon_tracer.h), builds a beam
+// map and a surface photon map (beam_map.h, surface_photon_map.h), renders the
+// whole film with them (camera_tracer.h: beams in media, next-event estimation
+// plus surface photons on surfaces) and is averaged into the film with equal
+// weight (renderTransientPasses, render/transient_integrator.h); its maps are
+// freed before the next pass, so memory is that of one pass. Kernel radii
+// shrink per pass (beam_settings.h). Time is optical path length: photons and
+// camera paths add eta times every segment (and phase-function delays), and a
+// ray x beam pair covers a continuous OPL interval, deposited exactly on the
+// film's bins. Transport split and estimators: docs/photon-beams.md.
+//
+// Determinism: pass i's camera samples use the render loop's per-pixel seeds
+// from passSeed(seed, i); its photons use streams seeded by (that seed,
+// photon index); maps are built in photon order. The output depends on the
+// seed, never on the thread count.
+//
+// | name           | type    | default        | meaning                                                   | unit   |
+// |----------------|---------|----------------|-----------------------------------------------------------|--------|
+// | passes         | integer | 1              | progressive passes averaged into the film                 | -      |
+// | photon_count   | integer | 100000         | photons traced per pass                                   | -      |
+// | radius         | float   | 0.005 diagonal | beam kernel radius of the first pass                      | scene  |
+// | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass            | scene  |
+// | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
+// |                |         |                | r^2 likewise (surfaces)                                   |        |
+// | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
+// | rr_depth       | integer | 5              | photon segments before Russian roulette                   | -      |
+// | store          | string  | "all"          | beams stored: "all" orders, or "single" scattering only   | -      |
+// | observer_time  | boolean | true           | include the camera segment in the OPL                     | -      |
+// | hide_emitters  | boolean | false          | emitters seen directly appear black                       | -      |
+// ("diagonal": of the scene's bounding box.)
+#include <tbb/task_arena.h>
+
+#include <femto/core/log.h>
+#include <femto/core/plugin.h>
+#include <femto/render/render_loop.h>
+#include <femto/render/sampler.h>
+#include <femto/render/scene.h>
+#include <femto/render/transient_integrator.h>
+#include <transient_beams/beam_pass.h>
+#include <transient_beams/beam_settings.h>
+
+namespace femto {
+namespace {
+/// Mixed into a pass's seed for its photons, so they draw from other streams than its pixels.
+constexpr uint64_t kPhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
+}  // namespace
+
+class TransientBeamsIntegrator final : public TransientIntegrator {
+ public:
+  explicit TransientBeamsIntegrator(const Properties& props) : settings_(beams::BeamSettings::parse(props)) {}
+
+  /// transient_beams renders in passes (render()): a camera sample needs a
+  /// pass's photon maps, so it cannot be nested in another integrator.
+  void sample(const Scene&, const Ray&, Sampler&, RadianceRecorder&) const override {
+    throw Error(settings_.location, "transient_beams renders whole passes (photon maps first, then the film) and "
+                                    "cannot be sampled one camera ray at a time (e.g. nested in another integrator)");
+  }
+
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override {
+    const beams::BeamSettings settings = settings_.resolved(scene.bbox());
+    return renderTransientPasses(scene, options, settings.passes, [&](int pass, double horizon) {
+      const uint64_t seed = mixSeed(passSeed(options.seed, pass), kPhotonSeedSalt);
+      std::shared_ptr<const beams::BeamPass> result;
+      auto trace = [&] { result = std::make_shared<const beams::BeamPass>(scene, settings, pass, seed, horizon); };
+      // Photons are traced with the thread count the user asked for.
+      if (options.threads > 0)
+        tbb::task_arena(options.threads).execute(trace);
+      else
+        trace();
+      if (pass == 0) logInfo("transient_beams: pass 0: ", result->toString());
+      return std::static_pointer_cast<const TransientIntegrator>(result);
+    });
+  }
+
+  std::string toString() const override {
+    return str("TransientBeamsIntegrator[passes=", settings_.passes, ", photon_count=", settings_.photonCount,
+               ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius, ", alpha=", settings_.alpha,
+               ", max_depth=", settings_.maxDepth, ", store=",
+               settings_.store == beams::BeamStore::All ? "all" : "single", ", observer_time=",
+               settings_.observerTime ? "true" : "false", "]");
+  }
+
+ private:
+  beams::BeamSettings settings_;
+};
+
+}  // namespace femto
+
+FEMTO_EXPORT_PLUGIN(femto::TransientBeamsIntegrator, Integrator, "transient_beams",
+                    "Progressive transient photon beams (media by ray x beam estimates, surfaces by NEE + photons)")

@@ -1,0 +1,171 @@
+// transient_beams' photon pass: power and OPL bookkeeping of the beams and
+// surface photons it stores (emitter choice in proportion to power, eta per
+// medium, scattering delays, glass delays), and maps that do not depend on
+// the thread count.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include <femto/render/scene.h>
+#include <transient_beams/photon_tracer.h>
+
+#include "media_test_util.h"
+
+using namespace femto;
+using namespace femto::test;
+using femto::beams::Beam;
+using femto::beams::BeamSettings;
+using femto::beams::PhotonPass;
+using femto::beams::SurfacePhoton;
+using femto::beams::tracePhotonPass;
+
+namespace {
+
+const float kEta = 1.33f, kDelay = 0.5f;
+
+/// Two point lights in an unbounded homogeneous medium of index 1.33 whose
+/// phase function delays every scattering by 0.5.
+std::shared_ptr<Scene> litMedium() {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.8"/><float name="albedo" value="0.9"/>
+    <float name="eta" value=")", kEta, R"("/><phase type="isotropic"><float name="delay" value=")", kDelay, R"("/></phase>
+  </medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
+  <emitter type="point"><point name="position" x="-1" y="0.5" z="0"/><rgb name="intensity" value="1, 0.5, 0"/></emitter>
+</scene>)"));
+}
+
+BeamSettings photonSettings(int64_t photons) {
+  BeamSettings s;
+  s.photonCount = photons;
+  return s;
+}
+
+}  // namespace
+
+TEST(TransientBeamsPhotons, FirstBeamsCarryTheEmittedPowerFromTheLights) {
+  auto scene = litMedium();
+  const int64_t n = 20000;
+  PhotonPass pass = tracePhotonPass(*scene, photonSettings(n), 17, Infinity);
+  const Point3f a(0.8f, 0.0f, 1.0f), b(-1.0f, 0.5f, 0.0f);
+  const Color3f powerA = Color3f(2.0f) * (4.0f * Pi), powerB = Color3f(1.0f, 0.5f, 0.0f) * (4.0f * Pi);
+  const Color3f total = powerA + powerB;
+  // Emitters are picked in proportion to their (channel-average) power; a
+  // photon carries its emitter's power over the probability of that pick.
+  const double p = powerA.average() / total.average();
+  const Color3f carriedA = powerA / float(p), carriedB = powerB / float(1.0 - p);
+  double firstPower[3] = {0.0, 0.0, 0.0};
+  int first = 0, fromA = 0;
+  for (const Beam& beam : pass.beams) {
+    if (beam.depth != 1) continue;
+    ++first;
+    bool isA = distance(beam.origin, a) < 1e-5f;
+    ASSERT_TRUE(isA || distance(beam.origin, b) < 1e-5f) << "a first beam starts at a light";
+    fromA += isA;
+    EXPECT_EQ(beam.opl, 0.0) << "emission is a Dirac pulse at OPL 0";
+    EXPECT_FLOAT_EQ(beam.eta, kEta);
+    EXPECT_NE(beam.medium, nullptr);
+    const Color3f& carried = isA ? carriedA : carriedB;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(beam.power[c], carried[c], 1e-5f * carried[c] + 1e-6f);
+    for (int c = 0; c < 3; ++c) firstPower[c] += beam.power[c];
+  }
+  EXPECT_EQ(first, n) << "every photon starts with one beam (the medium is unbounded)";
+  EXPECT_NEAR(double(fromA) / n, p, 5.0 * std::sqrt(p * (1.0 - p) / n)) << "binomial, 5 sigma";
+  // The first beams' mean power estimates the lights' total power (5 sigma of
+  // the two-valued photon power).
+  for (int c = 0; c < 3; ++c) {
+    double variance = p * carriedA[c] * carriedA[c] + (1.0 - p) * carriedB[c] * carriedB[c] - total[c] * total[c];
+    EXPECT_NEAR(firstPower[c] / double(n), total[c], 5.0 * std::sqrt(std::max(0.0, variance) / n) + 1e-4) << c;
+  }
+}
+
+TEST(TransientBeamsPhotons, BeamOplIsEtaTimesDistanceTravelledPlusScatteringDelays) {
+  auto scene = litMedium();
+  PhotonPass pass = tracePhotonPass(*scene, photonSettings(5000), 23, Infinity);
+  const Point3f lights[2] = {Point3f(0.8f, 0.0f, 1.0f), Point3f(-1.0f, 0.5f, 0.0f)};
+  int second = 0, deeper = 0;
+  for (const Beam& beam : pass.beams) {
+    if (beam.depth == 1) continue;
+    // The photon reached this beam's origin from one of the lights along a
+    // path at least as long as the straight line, with depth - 1 delays.
+    double straight = std::min(distance(beam.origin, lights[0]), distance(beam.origin, lights[1]));
+    double lower = kEta * straight + (beam.depth - 1) * kDelay;
+    if (beam.depth == 2) {
+      // One straight segment from the light that emitted it: exact.
+      double fromA = kEta * distance(beam.origin, lights[0]) + kDelay;
+      double fromB = kEta * distance(beam.origin, lights[1]) + kDelay;
+      EXPECT_NEAR(std::min(std::abs(beam.opl - fromA), std::abs(beam.opl - fromB)), 0.0, 1e-4 * (1.0 + beam.opl));
+      ++second;
+    } else {
+      EXPECT_GE(beam.opl, lower - 1e-4 * (1.0 + beam.opl));
+      ++deeper;
+    }
+  }
+  EXPECT_GT(second, 1000);
+  EXPECT_GT(deeper, 1000);
+}
+
+TEST(TransientBeamsPhotons, StoreSingleKeepsOnlyUnscatteredBeams) {
+  auto scene = litMedium();
+  BeamSettings settings = photonSettings(3000);
+  settings.store = beams::BeamStore::Single;
+  PhotonPass pass = tracePhotonPass(*scene, settings, 5, Infinity);
+  EXPECT_EQ(pass.beams.size(), 3000u);
+  for (const Beam& beam : pass.beams) EXPECT_EQ(beam.depth, 1);
+}
+
+TEST(TransientBeamsPhotons, GlassDelaysPhotonsByItsIndexAlongTheRefractedPath) {
+  // A point light at the origin above a glass slab (ior 1.5, z in [1, 1.4])
+  // and a diffuse floor at z = 3 facing it. Photons crossing the slab
+  // (depth 3: light -> slab, inside, -> floor) arrive at OPL
+  // (3 - h) / cos(theta) + 1.5 h / cos(theta'), sin(theta) = 1.5 sin(theta'),
+  // theta read from the direction they arrive from (the slab keeps it).
+  const float h = 0.4f;
+  auto scene = loadSceneStrict(str(R"(<scene version="3.0.0">
+  <emitter type="point"><point name="position" x="0" y="0" z="0"/><float name="intensity" value="1"/></emitter>
+  <shape type="cube">
+    <transform name="to_world"><scale x="20" y="20" z=")", h / 2, R"("/><translate z=")", 1 + h / 2, R"("/></transform>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="20"/><rotate x="1" angle="180"/><translate z="3"/></transform>
+    <bsdf type="diffuse"/>
+  </shape>
+</scene>)"));
+  PhotonPass pass = tracePhotonPass(*scene, photonSettings(20000), 29, Infinity);
+  EXPECT_TRUE(pass.beams.empty()) << "no medium, no beams";
+  int checked = 0;
+  for (const SurfacePhoton& p : pass.surfacePhotons) {
+    EXPECT_GE(p.depth, 3) << "photons straight from the light are next-event estimation's, not stored";
+    if (p.depth != 3 || std::abs(p.p.z - 3.0f) > 1e-3f) continue;
+    double cosTheta = -p.wi.z, sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+    double cosInside = std::sqrt(1.0 - sinTheta * sinTheta / (1.5 * 1.5));
+    double expected = (3.0 - h) / cosTheta + 1.5 * h / cosInside;
+    // Rays leave surfaces offset by RayEpsilon (1 + max |p|) (interaction.cpp),
+    // which shifts the refracted path by about that much at each of the two
+    // glass vertices; the glass delay itself is 0.5 h / cos(theta') >= 0.2.
+    double offset = RayEpsilon * (1.0 + maxComponent(abs(p.p)));
+    EXPECT_NEAR(p.opl, expected, 1e-6 * expected + 6.0 * offset) << "photon at " << p.p;
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000);
+}
+
+TEST(TransientBeamsPhotons, MapsDoNotDependOnTheThreadCount) {
+  auto scene = litMedium();
+  auto trace = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    return tracePhotonPass(*scene, photonSettings(4000), 99, Infinity);
+  };
+  PhotonPass one = trace(1), two = trace(2);
+  ASSERT_EQ(one.beams.size(), two.beams.size());
+  for (size_t i = 0; i < one.beams.size(); ++i) {
+    const Beam &x = one.beams[i], &y = two.beams[i];
+    ASSERT_TRUE(x.origin == y.origin && x.direction == y.direction && x.length == y.length && x.power == y.power &&
+                x.opl == y.opl && x.depth == y.depth)
+        << "beam " << i;
+  }
+}

@@ -1,0 +1,262 @@
+// transient_beams end to end: agreement with transient_path on the fog
+// Cornell box (per time bin and time integral) and on a scene without media
+// (surfaces: NEE + photon map), the time integral of the volume equal to the
+// steady image, progressive passes averaged into the film, output independent
+// of the thread count, and settings errors naming file and line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <femto/image/image_io.h>
+#include <femto/render/scene.h>
+#include <femto/xml/loader.h>
+
+#include "media_test_util.h"
+#include "render_test_util.h"
+#include "transient_film_test_util.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+const std::filesystem::path kFogBox = std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml";
+
+struct Rendered {
+  std::vector<float> volume;  // (h, w, bins, 3)
+  Bitmap steady;
+  int h = 0, w = 0, bins = 0;
+};
+
+Rendered render(const std::shared_ptr<Scene>& scene, const std::filesystem::path& out, uint64_t seed, int threads = 0) {
+  RenderOptions options;
+  options.output = out;
+  options.seed = seed;
+  options.progress = false;
+  options.threads = threads;
+  RenderStats stats = scene->integrator().render(*scene, options);
+  EXPECT_TRUE(stats.completed);
+  EXPECT_EQ(stats.invalidSamples, 0u);
+  Rendered r;
+  r.steady = readImage(out);
+  std::filesystem::path npy = std::filesystem::path(out).replace_extension(".npy");
+  if (std::filesystem::exists(npy)) r.volume = readVolume(npy, r.h, r.w, r.bins);
+  return r;
+}
+
+std::shared_ptr<Scene> fogBox(const std::string& integrator, int spp, int bins) {
+  loadSceneStrict("<scene version=\"3.0.0\"/>");  // puts the build's plugins on the search path
+  LoadOptions options;
+  options.strict = true;
+  options.defines = {{"integrator", integrator}, {"resolution", "16"}, {"spp", std::to_string(spp)},
+                     {"bins", std::to_string(bins)}, {"bin_width", std::to_string(10.24 / bins)}};
+  return loadScene(kFogBox, options);
+}
+
+/// Per time bin (and one more entry for the steady image), the image sum of
+/// the channel average, over `runs` renders with different seeds.
+std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs) {
+  auto dir = scratchDir(name);
+  std::vector<Mean> sums;
+  for (int run = 0; run < runs; ++run) {
+    Rendered r = render(scene, dir / "out.exr", uint64_t(100 + run));
+    sums.resize(size_t(r.bins) + 1);
+    std::vector<double> perBin(size_t(r.bins) + 1, 0.0);
+    for (size_t i = 0; i < r.volume.size(); ++i) perBin[(i / 3) % size_t(r.bins)] += r.volume[i] / 3.0;
+    for (int y = 0; y < r.steady.height; ++y)
+      for (int x = 0; x < r.steady.width; ++x)
+        for (int c = 0; c < 3; ++c) perBin.back() += r.steady.pixel(x, y)[c] / 3.0;
+    for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
+  }
+  return sums;
+}
+
+/// Two sets of independent runs estimate the same quantities: each pair of
+/// means within 5 standard errors of their difference (the runs' spread).
+void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, const char* what) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    double se = std::sqrt(a[k].standardError() * a[k].standardError() + b[k].standardError() * b[k].standardError());
+    std::printf("%s %s: %.5g +- %.2g vs %.5g +- %.2g\n", what,
+                k + 1 == a.size() ? "steady" : str("bin ", k).c_str(), a[k].mean(), a[k].standardError(), b[k].mean(),
+                b[k].standardError());
+    EXPECT_NEAR(a[k].mean(), b[k].mean(), 5.0 * se + 1e-6) << what << (k + 1 == a.size() ? " steady" : " bin ") << k;
+  }
+}
+
+}  // namespace
+
+TEST(TransientBeamsRender, FogCornellBoxAgreesWithTransientPath) {
+  // 8 coarse bins over the scene's window [3, 13.24): the direct wavefront,
+  // fog and wall bounces. Both estimators' spreads come from 6 runs each.
+  auto beams = fogBox("transient_beams", 4, 8), path = fogBox("transient_path", 64, 8);
+  std::vector<Mean> b = imageSums(beams, "beams-fog", 6), p = imageSums(path, "path-fog", 6);
+  expectAgree(b, p, "fog box");
+}
+
+TEST(TransientBeamsRender, VolumeTimeIntegralIsTheSteadyImage) {
+  auto dir = scratchDir("beams-fog-integral");
+  // A window wide enough for nearly everything: [0, 40).
+  loadSceneStrict("<scene version=\"3.0.0\"/>");
+  LoadOptions options;
+  options.strict = true;
+  options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "2"}, {"bins", "16"}};
+  auto scene = loadScene(kFogBox, options);
+  Rendered r = render(scene, dir / "fog.exr", 3);
+  Bitmap before = readImage(dir / "fog_before.exr"), after = readImage(dir / "fog_after.exr");
+  double total = 0.0;
+  for (int y = 0; y < r.h; ++y)
+    for (int x = 0; x < r.w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = before.pixel(x, y)[c] + after.pixel(x, y)[c];
+        for (int b = 0; b < r.bins; ++b) sum += r.volume[((size_t(y) * r.w + x) * r.bins + b) * 3 + c];
+        float s = r.steady.pixel(x, y)[c];
+        EXPECT_NEAR(sum, s, 1e-5 * std::max(1.0f, std::abs(s))) << x << "," << y << "," << c;
+        total += s;
+      }
+  EXPECT_GT(total, 0.0);
+}
+
+namespace {
+
+/// A closed room without media: diffuse walls, a sphere light, a mirror
+/// sphere (caustics and reflections), steady or transient film.
+std::string roomWithoutMedia(const std::string& integrator, int spp, const std::string& film) {
+  return str(R"(<scene version="3.0.0">
+  <integrator type=")", integrator, R"("><integer name="max_depth" value="6"/></integrator>
+  <shape type="cube"><transform name="to_world"><scale value="2"/></transform>
+    <boolean name="flip_normals" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0.6" y="-1.2" z="0"/><float name="radius" value="0.6"/>
+    <bsdf type="conductor"/></shape>
+  <shape type="sphere"><point name="center" x="-0.5" y="1.2" z="0.3"/><float name="radius" value="0.35"/>
+    <emitter type="area"><rgb name="radiance" value="4, 5, 6"/></emitter></shape>
+  <sensor type="perspective"><float name="fov" value="70"/>
+    <transform name="to_world"><lookat origin="0, 0, 1.9" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value=")", spp, R"("/></sampler>
+    )", film, R"(
+  </sensor>
+</scene>)");
+}
+
+const char* kSmallTransientFilm = R"(<film type="transient"><integer name="width" value="12"/><integer name="height" value="12"/>
+      <integer name="temporal_bins" value="6"/><float name="start_opl" value="0"/><float name="bin_width_opl" value="3"/>
+      <rfilter type="box"/></film>)";
+
+}  // namespace
+
+TEST(TransientBeamsRender, SceneWithoutMediaAgreesWithTransientPath) {
+  auto beams = loadSceneStrict(roomWithoutMedia("transient_beams", 4, kSmallTransientFilm));
+  auto path = loadSceneStrict(roomWithoutMedia("transient_path", 64, kSmallTransientFilm));
+  std::vector<Mean> b = imageSums(beams, "beams-room", 6), p = imageSums(path, "path-room", 6);
+  expectAgree(b, p, "room");
+}
+
+TEST(TransientBeamsRender, SteadyFilmAgreesWithTransientFilmIntegral) {
+  // The same integrator on an hdrfilm: the steady render path (renderSteadyPasses).
+  const char* steadyFilm = R"(<film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="12"/>
+      <rfilter type="box"/></film>)";
+  auto transient = loadSceneStrict(roomWithoutMedia("transient_beams", 4, kSmallTransientFilm));
+  auto steady = loadSceneStrict(roomWithoutMedia("transient_beams", 4, steadyFilm));
+  std::vector<Mean> t = imageSums(transient, "beams-room-t", 4), s = imageSums(steady, "beams-room-s", 4);
+  std::vector<Mean> tSteady{t.back()}, sSteady{s.back()};
+  expectAgree(tSteady, sSteady, "steady film");
+}
+
+namespace {
+
+/// A closed diffuse room (normals flipped inward, so the fog inside is the
+/// walls' exterior) filled with fog, the camera and a point light inside.
+std::string foggyRoom(const std::string& integratorParams) {
+  return str(R"(<scene version="3.0.0">
+  <integrator type="transient_beams">)", integratorParams, R"(</integrator>
+  <medium type="homogeneous" id="fog"><rgb name="sigma_t" value="0.5"/><rgb name="albedo" value="0.8"/></medium>
+  <shape type="cube"><transform name="to_world"><scale value="2"/></transform>
+    <boolean name="flip_normals" value="true"/><ref name="exterior" id="fog"/>
+    <bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
+  <emitter type="point"><point name="position" x="0.3" y="1" z="0"/><float name="intensity" value="3"/></emitter>
+  <sensor type="perspective"><float name="fov" value="70"/><ref id="fog"/>
+    <transform name="to_world"><lookat origin="0, 0, 1.9" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
+    <film type="transient"><integer name="width" value="10"/><integer name="height" value="10"/>
+      <integer name="temporal_bins" value="20"/><float name="start_opl" value="0"/><float name="bin_width_opl" value="1"/>
+      <rfilter type="box"/></film>
+  </sensor>
+</scene>)");
+}
+
+const char* kBeamParams = R"(<integer name="photon_count" value="3000"/><float name="radius" value="0.05"/>
+    <float name="surface_radius" value="0.1"/><float name="alpha" value="0.5"/>)";
+
+}  // namespace
+
+TEST(TransientBeamsRender, OutputDoesNotDependOnTheThreadCount) {
+  auto scene = loadSceneStrict(foggyRoom(str(kBeamParams, R"(<integer name="passes" value="2"/>)")));
+  auto dir = scratchDir("beams-threads");
+  Rendered one = render(scene, dir / "one.exr", 5, 1), two = render(scene, dir / "two.exr", 5, 2);
+  ASSERT_EQ(one.volume.size(), two.volume.size());
+  ASSERT_FALSE(one.volume.empty());
+  size_t differing = 0;
+  double total = 0.0;
+  for (size_t i = 0; i < one.volume.size(); ++i) differing += one.volume[i] != two.volume[i], total += one.volume[i];
+  EXPECT_EQ(differing, 0u) << "1 and 2 threads must give bitwise equal volumes";
+  EXPECT_GT(total, 0.0);
+}
+
+TEST(TransientBeamsRender, PassesAverageIntoTheFilmWithShrinkingRadii) {
+  // Two passes (radius r, then alpha r; surface radius sqrt(alpha) r_s) equal
+  // the mean of the two one-pass renders that use those radii and seeds.
+  auto dir = scratchDir("beams-passes");
+  auto twoPasses = loadSceneStrict(foggyRoom(str(kBeamParams, R"(<integer name="passes" value="2"/>)")));
+  auto first = loadSceneStrict(foggyRoom(kBeamParams));
+  auto second = loadSceneStrict(foggyRoom(str(R"(<integer name="photon_count" value="3000"/>
+    <float name="radius" value=")", 0.05f * 0.5f, R"("/><float name="surface_radius" value=")", 0.1f * std::sqrt(0.5f),
+                                              R"("/>)")));
+  const uint64_t seed = 11;
+  Rendered a = render(twoPasses, dir / "a.exr", seed), b = render(first, dir / "b.exr", seed),
+           c = render(second, dir / "c.exr", mixSeed(seed, 1));
+  ASSERT_EQ(a.volume.size(), b.volume.size());
+  double total = 0.0;
+  for (size_t i = 0; i < a.volume.size(); ++i) {
+    double mean = 0.5 * (double(b.volume[i]) + double(c.volume[i]));
+    ASSERT_NEAR(a.volume[i], mean, 1e-4 * std::abs(mean) + 1e-7) << "entry " << i;
+    total += mean;
+  }
+  EXPECT_GT(total, 0.0);
+}
+
+TEST(TransientBeamsRender, BadParametersNameTheFileAndLine) {
+  auto expectError = [](const std::string& params, const std::string& text) {
+    try {
+      loadSceneStrict(foggyRoom(params));
+      ADD_FAILURE() << "no error for " << params;
+    } catch (const Error& e) {
+      std::string message = e.what();
+      EXPECT_NE(message.find(text), std::string::npos) << message;
+      EXPECT_NE(message.find("<media test>:"), std::string::npos) << message;
+    }
+  };
+  expectError(R"(<string name="store" value="double"/>)", "\"store\"");
+  expectError(R"(<float name="alpha" value="1.5"/>)", "must lie in (0, 1]");
+  expectError(R"(<float name="radius" value="-1"/>)", "finite radius > 0");
+  expectError(R"(<integer name="passes" value="0"/>)", "\"passes\"");
+  expectError(R"(<integer name="photon_count" value="0"/>)", "\"photon_count\"");
+}
+
+TEST(TransientBeamsRender, ShippedFogCornellBoxRendersWithTransientBeams) {
+  auto dir = scratchDir("beams-fog-shipped");
+  loadSceneStrict("<scene version=\"3.0.0\"/>");
+  LoadOptions options;
+  options.strict = true;
+  options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "1"}, {"bins", "32"},
+                     {"bin_width", "0.32"}};
+  auto scene = loadScene(kFogBox, options);
+  Rendered r = render(scene, dir / "fog.exr", 1);
+  ASSERT_EQ(r.bins, 32);
+  double total = 0.0;
+  for (float v : r.volume) total += v;
+  EXPECT_GT(total, 0.0);
+}
