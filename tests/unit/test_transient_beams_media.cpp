@@ -14,6 +14,7 @@
 
 #include "media_test_util.h"
 #include "single_scattering_model.h"
+#include "transient_test_util.h"
 
 using namespace femto;
 using namespace femto::test;
@@ -105,4 +106,37 @@ TEST(TransientBeamsMedia, SingleScatteringConvergesToTheClosedFormAsTheRadiusShr
     double t0 = tau0 + width * b / bins, t1 = tau0 + width * (b + 1) / bins;
     expectWithinErrorBars(narrow.bins[size_t(b)], model.binIntegral(t0, t1), 1e-7, str("bin ", b, " [", t0, ", ", t1, ")"));
   }
+}
+
+TEST(TransientBeamsMedia, WithoutObserverTimeOnlyTheLightsPathCounts) {
+  // observer_time = false drops the camera segment from the OPL: the same
+  // beams give the same radiance, now arriving at the light path's OPL alone,
+  // which is at least the light's distance from the camera ray (minus the
+  // kernel radius), and earlier than with the camera segment.
+  const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
+  SingleScattering model{d};
+  auto scene = singleScatteringScene(model);
+  beams::BeamSettings settings;
+  settings.photonCount = 20000;
+  settings.radius = settings.surfaceRadius = 0.05f;
+  settings.maxDepth = 2;
+  beams::BeamSettings unwarped = settings;
+  unwarped.observerTime = false;
+  beams::BeamPass with(*scene, settings, 0, 77, Infinity), without(*scene, unwarped, 0, 77, Infinity);
+  auto withSampler = seededSampler(8), withoutSampler = seededSampler(8);
+  CollectingRecorder a, b;
+  with.sample(*scene, Ray(Point3f(0.0f), d), *withSampler, a);
+  without.sample(*scene, Ray(Point3f(0.0f), d), *withoutSampler, b);
+  ASSERT_EQ(a.hits.size(), b.hits.size());
+  ASSERT_GT(a.hits.size(), 100u);
+  EXPECT_NEAR(a.total().g, b.total().g, 1e-6f * a.total().g);
+  const Vec3f toLight = model.light - Point3f(0.0f);
+  const double lineDistance = length(toLight - d * dot(toLight, d));
+  double meanShift = 0.0;
+  for (size_t i = 0; i < a.hits.size(); ++i) {
+    EXPECT_GE(b.hits[i].first, lineDistance - settings.radius - 1e-4);
+    EXPECT_LT(b.hits[i].first, a.hits[i].first);
+    meanShift += (a.hits[i].first - b.hits[i].first) / double(a.hits.size());
+  }
+  EXPECT_GT(meanShift, 0.5) << "the camera segments' length, on average";
 }
