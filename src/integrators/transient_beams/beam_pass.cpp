@@ -8,7 +8,7 @@ BeamPass::BeamPass(const Scene& scene, const BeamSettings& settings, int pass, u
 BeamPass::BeamPass(const BeamSettings& settings, int pass, PhotonPass traced)
     : settings_(settings),
       beams_(std::move(traced.beams), settings.beamRadius(pass)),
-      photons_(std::move(traced.surfacePhotons)),
+      photons_(std::move(traced.surfacePhotons), settings.surfaceRadiusOf(pass)),
       maps_{beams_, photons_, settings.beamRadius(pass), settings.surfaceRadiusOf(pass), traced.photonCount} {}
 
 void BeamPass::sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const {
