@@ -165,6 +165,17 @@ TEST(CompareFiles, MismatchedInputsAreOneSentenceNamingBothFiles) {
             "the mask \"" + (dir / "small.exr").string() + "\" is 2x2, the images are 3x2");
 }
 
+TEST(CompareFiles, TruncatedVolumeIsRefusedWhenOpened) {
+  fs::path dir = test::scratchDir("compare-truncated");
+  test::writeTestVolume(dir / "ref.npy", 2, 2, 3, volumeRef);
+  test::writeTestVolume(dir / "cut.npy", 2, 2, 3, volumeRef);
+  const uintmax_t size = fs::file_size(dir / "cut.npy");
+  fs::resize_file(dir / "cut.npy", size - 4);
+  EXPECT_EQ(errorMessageOf([&] { compareFiles(dir / "ref.npy", dir / "cut.npy", {}); }),
+            "\"" + (dir / "cut.npy").string() + "\" is truncated: a (2, 2, 3, 3) volume needs " + std::to_string(size) +
+                " bytes, the file has " + std::to_string(size - 4));
+}
+
 TEST(CompareFiles, CropTextIsParsedAndBadFormsRefused) {
   EXPECT_EQ(errorMessageOf([] { parsePixelRect("1,2,3", "--crop"); }),
             "--crop expects x,y,width,height (whole numbers), got \"1,2,3\"");

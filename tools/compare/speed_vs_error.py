@@ -18,6 +18,7 @@ import csv
 import datetime
 import os
 import platform
+import re
 import subprocess
 import sys
 
@@ -63,6 +64,17 @@ def parse_args(argv):
     if args.seed == args.reference_seed:
         p.error("--seed and --reference-seed must differ: a reference sharing the test's samples hides its error")
     args.reference_integrator = args.reference_integrator or args.integrators[0][0]
+    try:
+        scene_text = open(args.scene).read()
+    except OSError as e:
+        p.error(f"cannot read the scene: {e}")
+    params = {"integrator"} | {param for _, param, _ in args.integrators}
+    if not args.reference:
+        params.add(args.reference_param)
+    for param in sorted(params):
+        # Without it, -D PARAM=... would change nothing and every budget would render the same.
+        if not re.search(r'<default\s+name="%s"' % re.escape(param), scene_text):
+            p.error(f'{args.scene} has no <default name="{param}">: -D {param}=... would change nothing')
     return args
 
 

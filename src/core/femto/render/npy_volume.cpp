@@ -1,6 +1,7 @@
 #include <femto/render/npy_volume.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -93,10 +94,18 @@ NpyVolume NpyVolume::open(const std::filesystem::path& path) {
   size_t shape = text.find("'shape': (");
   if (text.find("'descr': '<f4'") == std::string::npos || text.find("'fortran_order': False") == std::string::npos ||
       shape == std::string::npos ||
-      std::sscanf(text.c_str() + shape, "'shape': (%ld, %ld, %ld, %ld", &h, &w, &b, &c) != 4 || c != 3)
+      std::sscanf(text.c_str() + shape, "'shape': (%ld, %ld, %ld, %ld", &h, &w, &b, &c) != 4 || c != 3 ||
+      h < 1 || w < 1 || b < 1)
     throw Error(str("\"", path.string(), "\" is not a float32 C-order (height, width, bins, 3) volume"));
   volume.height_ = int(h), volume.width_ = int(w), volume.bins_ = int(b);
   volume.dataOffset_ = sizeof(prefix) + length;
+  // A short file (an interrupted copy) would otherwise fail later, at the
+  // first read past its end, with a bare I/O error.
+  struct stat st {};
+  uint64_t expected = volume.offsetOf(volume.height_, 0);
+  if (::fstat(fd, &st) == 0 && uint64_t(st.st_size) < expected)
+    throw Error(str("\"", path.string(), "\" is truncated: a (", h, ", ", w, ", ", b, ", 3) volume needs ", expected,
+                    " bytes, the file has ", st.st_size));
   return volume;
 }
 
