@@ -65,6 +65,7 @@ TEST(TransientBeamsPhotons, FirstBeamsCarryTheEmittedPowerFromTheLights) {
     bool isA = distance(beam.origin, a) < 1e-5f;
     ASSERT_TRUE(isA || distance(beam.origin, b) < 1e-5f) << "a first beam starts at a light";
     fromA += isA;
+    EXPECT_EQ(beam.emitter, isA ? 0 : 1) << "beams name the emitter (its pulse) in scene order";
     EXPECT_EQ(beam.opl, 0.0) << "emission is a Dirac pulse at OPL 0";
     EXPECT_FLOAT_EQ(beam.eta, kEta);
     EXPECT_NE(beam.medium, nullptr);

@@ -6,6 +6,8 @@
 // Jarabo 2017, "Transient Photon Beams").
 //
 // Time is optical path length (OPL, scene units, see femto/render/time_grid.h).
+#include <cstdint>
+
 #include <femto/math/ray.h>
 #include <femto/math/vector.h>
 #include <femto/render/spectrum.h>
@@ -26,7 +28,8 @@ struct Beam {
   Color3f power{0.0f};             // photon power (flux) at `origin`, before attenuation along the beam
   double opl = 0.0;                // OPL at `origin` since emission (emission offset + delays + sum eta*d)
   float eta = 1.0f;                // refractive index of the medium crossed: OPL per unit length
-  int depth = 1;                   // photon path segments up to and including this one (1: straight from the emitter)
+  int16_t depth = 1;               // photon path segments up to and including this one (1: straight from the emitter)
+  uint16_t emitter = 0;            // index in Scene::emitters() of the emitter that sent the photon (its pulse)
   const Medium* medium = nullptr;  // the medium the beam crosses (never null for stored beams)
 };
 

@@ -18,6 +18,10 @@ namespace {
 
 /// Index-matched boundaries crossed in a row before a photon is abandoned.
 constexpr int kMaxPassThrough = 256;
+/// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
+constexpr size_t kMaxEmitters = 65535;
+constexpr int kMaxPhotonDepth = 32767;
+static_assert(sizeof(Beam) <= 64, "a beam should fit a cache line");
 /// Photons per parallel work item: outputs are concatenated in item order.
 constexpr uint64_t kPhotonsPerBlock = 1024;
 
@@ -57,6 +61,7 @@ struct Photon {
   const Medium* medium = nullptr;
   float surfaceEta = 1.0f;   // refractive index where there is no medium
   int depth = 1;             // segment being travelled (1: leaving the emitter)
+  uint16_t emitter = 0;      // index of the emitter that sent it
   bool scattered = false;    // scattered in a medium or off a non-specular surface
   bool indirect = false;     // scattered, or bounced off a specular surface
 };
@@ -77,8 +82,10 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   Sampler& sampler = *sampler_;
   sampler.startPixel(seed, index);
   float pick = 0.0f;
-  const Emitter& emitter = *scene_.emitters()[emitterPower_.sampleDiscrete(sampler.next1D(), &pick)];
+  const size_t emitterIndex = emitterPower_.sampleDiscrete(sampler.next1D(), &pick);
+  const Emitter& emitter = *scene_.emitters()[emitterIndex];
   Photon ph;
+  ph.emitter = uint16_t(emitterIndex);
   Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
   ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
   // Emission time from the emitter's pulse: Dirac at OPL 0 until emitters have pulses.
@@ -90,7 +97,8 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   const float startLevel = ph.power.maxValue();
   // The camera adds at least one segment to every photon path: a photon
   // segment `depth` ends paths of at least depth + 1 segments.
-  for (int passThrough = 0; passThrough < kMaxPassThrough && settings_.depthAllowed(ph.depth + 1);) {
+  for (int passThrough = 0;
+       passThrough < kMaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
     SurfaceInteraction si;
     bool hit = scene_.rayIntersect(ph.ray, si);
     float eta = ph.medium ? ph.medium->eta() : ph.surfaceEta;
@@ -100,7 +108,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
         // From the exact vertex, so the beam's OPL and geometry agree.
         float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(medium, ph.opl, horizon_);
         if (length > 0.0f && std::isfinite(length))
-          beams.push_back(Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, eta, ph.depth, &medium});
+          beams.push_back(Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, eta, int16_t(ph.depth), ph.emitter, &medium});
       }
       MediumSample ms = medium.sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
       ph.power *= ms.weight;
@@ -138,7 +146,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     const BSDF& bsdf = *si.bsdf();
     if (bsdf.hasSmooth() && ph.indirect) {
       Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
-      photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth});
+      photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter});
     }
     BSDFSample bs;
     Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
@@ -168,6 +176,9 @@ bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, 
 }
 
 PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon) {
+  if (scene.emitters().size() > kMaxEmitters)
+    throw Error(settings.location, str("transient_beams: the scene has ", scene.emitters().size(),
+                                       " emitters; photons can name at most ", kMaxEmitters));
   PhotonPass pass;
   pass.photonCount = uint64_t(settings.photonCount);
   const uint64_t blocks = (pass.photonCount + kPhotonsPerBlock - 1) / kPhotonsPerBlock;

@@ -26,6 +26,7 @@ struct SurfacePhoton {
   Color3f power{0.0f}; // flux carried
   double opl = 0.0;    // OPL at arrival since emission
   int depth = 1;       // photon path segments up to this point (1: straight from the emitter)
+  uint32_t emitter = 0;  // index in Scene::emitters() of the emitter that sent the photon (its pulse)
 };
 
 class SurfacePhotonMap {
