@@ -95,7 +95,7 @@ TEST(TransientBeamsMedia, SingleScatteringConvergesToTheClosedFormAsTheRadiusShr
   const int bins = 12;
   const double exact = model.binIntegral(tau0, tau0 + 200.0);
   PassStatistics wide = estimate(*scene, d, 0.5f, 16, 20000, tau0, width / bins, bins);
-  PassStatistics narrow = estimate(*scene, d, 0.03f, 16, 100000, tau0, width / bins, bins);
+  PassStatistics narrow = estimate(*scene, d, 0.03f, 12, 60000, tau0, width / bins, bins);
   double wideError = std::abs(wide.total.mean() - exact), narrowError = std::abs(narrow.total.mean() - exact);
   std::printf("exact %.6g; radius 0.5: %.6g +- %.2g; radius 0.03: %.6g +- %.2g\n", exact, wide.total.mean(),
               wide.total.standardError(), narrow.total.mean(), narrow.total.standardError());

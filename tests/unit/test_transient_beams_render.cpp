@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -47,13 +49,22 @@ Rendered render(const std::shared_ptr<Scene>& scene, const std::filesystem::path
   return r;
 }
 
-std::shared_ptr<Scene> fogBox(const std::string& integrator, int spp, int bins) {
+/// The shipped fog Cornell box, small. `beamParams` are added to its
+/// <integrator> element (the file's own parameters stay), so the test can use
+/// fewer photons than the integrator's default.
+std::shared_ptr<Scene> fogBox(const std::string& integrator, int spp, int bins, const std::string& beamParams = "") {
   loadSceneStrict("<scene version=\"3.0.0\"/>");  // puts the build's plugins on the search path
+  std::ifstream file(kFogBox);
+  std::string xml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string element = "<integrator type=\"$integrator\">";
+  size_t at = xml.find(element);
+  if (at == std::string::npos) throw Error("the fog box scene no longer has <integrator type=\"$integrator\">");
+  xml.insert(at + element.size(), beamParams);
   LoadOptions options;
   options.strict = true;
   options.defines = {{"integrator", integrator}, {"resolution", "16"}, {"spp", std::to_string(spp)},
                      {"bins", std::to_string(bins)}, {"bin_width", std::to_string(10.24 / bins)}};
-  return loadScene(kFogBox, options);
+  return loadSceneFromString(xml, kFogBox.parent_path(), options, kFogBox.string());
 }
 
 /// Per time bin (and one more entry for the steady image), the image sum of
@@ -75,17 +86,28 @@ std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::stri
 }
 
 /// Two sets of independent runs estimate the same quantities: each pair of
-/// means within 5 standard errors of their difference (the runs' spread).
-void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, const char* what) {
+/// means within 5 standard errors of their difference (the runs' spread),
+/// plus `bias` times the value for what a density estimate's kernel may
+/// shift (0 between unbiased estimators).
+void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, const char* what, double bias = 0.0) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k) {
     double se = std::sqrt(a[k].standardError() * a[k].standardError() + b[k].standardError() * b[k].standardError());
     std::printf("%s %s: %.5g +- %.2g vs %.5g +- %.2g\n", what,
                 k + 1 == a.size() ? "steady" : str("bin ", k).c_str(), a[k].mean(), a[k].standardError(), b[k].mean(),
                 b[k].standardError());
-    EXPECT_NEAR(a[k].mean(), b[k].mean(), 5.0 * se + 1e-6) << what << (k + 1 == a.size() ? " steady" : " bin ") << k;
+    EXPECT_NEAR(a[k].mean(), b[k].mean(), 5.0 * se + bias * std::abs(b[k].mean()) + 1e-6)
+        << what << (k + 1 == a.size() ? " steady" : " bin ") << k;
   }
 }
+
+/// transient_beams' kernels are consistent, not unbiased: near walls and
+/// edges part of a kernel falls outside the medium or off the surface, so the
+/// estimate is low there. With the default radii (0.5 % and 1 % of the
+/// scene's diagonal) the band within a radius of an edge is a few percent of
+/// what the camera sees and loses at most half of its indirect light there:
+/// allow 2 % of the value on top of the noise.
+constexpr double kKernelBias = 0.02;
 
 }  // namespace
 
@@ -94,9 +116,10 @@ TEST(TransientBeamsRender, FogCornellBoxAgreesWithTransientPath) {
   // fog and wall bounces. Both estimators' spreads come from 6 runs each
   // (transient_beams' variance is mostly its photon maps', shared by all
   // pixels of a run: one camera sample per pixel is enough).
-  auto beams = fogBox("transient_beams", 1, 8), path = fogBox("transient_path", 64, 8);
+  auto beams = fogBox("transient_beams", 1, 8, R"(<integer name="photon_count" value="25000"/>)");
+  auto path = fogBox("transient_path", 64, 8);
   std::vector<Mean> b = imageSums(beams, "beams-fog", 6), p = imageSums(path, "path-fog", 6);
-  expectAgree(b, p, "fog box");
+  expectAgree(b, p, "fog box", kKernelBias);
 }
 
 TEST(TransientBeamsRender, VolumeTimeIntegralIsTheSteadyImage) {
@@ -156,7 +179,7 @@ TEST(TransientBeamsRender, SceneWithoutMediaAgreesWithTransientPath) {
   auto beams = loadSceneStrict(roomWithoutMedia("transient_beams", 32, kSmallTransientFilm));
   auto path = loadSceneStrict(roomWithoutMedia("transient_path", 64, kSmallTransientFilm));
   std::vector<Mean> b = imageSums(beams, "beams-room", 6), p = imageSums(path, "path-room", 6);
-  expectAgree(b, p, "room");
+  expectAgree(b, p, "room", kKernelBias);
 }
 
 TEST(TransientBeamsRender, SteadyFilmAgreesWithTransientFilmIntegral) {
