@@ -16,12 +16,14 @@
 // | bin_width_time     | float   | required* | (*) give bin_width_opl or bin_width_time, not both forms       |
 // | time_filter        | string  | "box"     | temporal reconstruction: box (no spread), tent, gaussian       |
 // | time_filter_width  | float   | 1 / 0.5   | tent half-width / gaussian standard deviation, in bins         |
+// | complete_steady    | boolean | false     | trace light past the window: complete steady image and `after` |
 // | write_volume       | boolean | true      | keep <stem>.npy (float32, shape (height, width, bins, 3))      |
 // | write_frames       | boolean | true      | write <stem>_frames/frame_NNNNN.exr, one per bin               |
 // | (nested rfilter)   | rfilter | box       | pixel filter; must be box (radius <= 0.5): tiles stream to disk|
 //
-// Always written: <stem>.exr + <stem>.png (steady image, every contribution
-// whatever its time), <stem>_before.exr and <stem>_after.exr.
+// Always written: <stem>.exr + <stem>.png (the steady image: all light that
+// arrives before the horizon, i.e. the window's end plus the time filter's
+// reach; with complete_steady all light), <stem>_before.exr and <stem>_after.exr.
 #include <femto/core/plugin.h>
 #include <femto/render/transient_film.h>
 

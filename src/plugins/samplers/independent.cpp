@@ -1,6 +1,11 @@
 // Independent sampler: uniform pseudo-random numbers from PCG32, no
-// stratification. Each pixel's stream is seeded from mixSeed(seed, pixel
-// index), so a pixel's samples do not depend on the thread or tile order.
+// stratification. Each sample of each pixel has its own stream, seeded from
+// mixSeed(mixSeed(seed, pixel index), sample index): a pixel's samples do not
+// depend on the thread or tile order, and a sample's numbers do not depend on
+// how many numbers the samples before it used. The latter makes a transient
+// render split into time windows add up exactly to the whole window: a path
+// stopped at one window's horizon would otherwise shift the next sample's
+// random numbers (docs/transient-film.md, "Splitting a render").
 //
 // | name         | type    | default | meaning                 |
 // |--------------|---------|---------|-------------------------|
@@ -16,8 +21,12 @@ class IndependentSampler final : public Sampler {
   explicit IndependentSampler(const Properties& props) : Sampler(props) {}
 
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
-  void startPixel(uint64_t seed, uint64_t pixelIndex) override { rng_.seed(mixSeed(seed, pixelIndex)); }
-  void advance() override {}  // one continuous stream per pixel
+  void startPixel(uint64_t seed, uint64_t pixelIndex) override {
+    pixelSeed_ = mixSeed(seed, pixelIndex);
+    sampleIndex_ = 0;
+    rng_.seed(mixSeed(pixelSeed_, sampleIndex_));
+  }
+  void advance() override { rng_.seed(mixSeed(pixelSeed_, ++sampleIndex_)); }
   float next1D() override { return rng_.nextFloat(); }
   Point2f next2D() override {
     float x = rng_.nextFloat();
@@ -29,6 +38,7 @@ class IndependentSampler final : public Sampler {
 
  private:
   PCG32 rng_;
+  uint64_t pixelSeed_ = 0, sampleIndex_ = 0;
 };
 
 }  // namespace femto

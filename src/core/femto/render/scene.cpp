@@ -5,6 +5,7 @@
 #include <femto/render/default_child.h>
 #include <femto/render/detail/embree_accel.h>
 #include <femto/render/shape_group.h>
+#include <femto/render/volumetric.h>
 
 namespace femto {
 
@@ -36,9 +37,16 @@ Scene::Scene(const Properties& props) {
   }
   integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
 
-  // A shapegroup is only seen through its instances.
-  for (const auto& shape : shapes_)
-    if (!dynamic_cast<const ShapeGroup*>(shape.get())) bbox_.expand(shape->bbox());
+  // A shapegroup is only seen through its instances (whose hits report the
+  // group's shapes, so those decide what paths may cross).
+  for (const auto& shape : shapes_) {
+    if (auto group = dynamic_cast<const ShapeGroup*>(shape.get())) {
+      for (const auto& child : group->shapes()) hasPassThroughShapes_ |= isPassThrough(child->bsdf());
+      continue;
+    }
+    bbox_.expand(shape->bbox());
+    if (!dynamic_cast<const ShapeInstance*>(shape.get())) hasPassThroughShapes_ |= isPassThrough(shape->bsdf());
+  }
   accel_ = std::make_unique<Accel>(shapes_);
 
   // Emitters are picked with probability proportional to their sampling weight.

@@ -51,6 +51,10 @@ class Scene : public Object {
   const Sensor& sensor() const { return *sensor_; }
   const Integrator& integrator() const { return *integrator_; }
   const BoundingBox3f& bbox() const { return bbox_; }
+  /// Does any shape (or shape of a group) let paths cross it unchanged
+  /// (isPassThrough in volumetric.h: media boundaries)? When none does, a
+  /// connection outside media is a plain shadow ray.
+  bool hasPassThroughShapes() const { return hasPassThroughShapes_; }
 
  private:
   struct Accel;  // Embree state (detail/embree_accel.h, internal to the core)
@@ -63,6 +67,7 @@ class Scene : public Object {
   std::shared_ptr<Sensor> sensor_;
   std::shared_ptr<Integrator> integrator_;
   BoundingBox3f bbox_;
+  bool hasPassThroughShapes_ = false;
 };
 
 }  // namespace femto

@@ -14,6 +14,7 @@
 // G is the CDF of the box-interval-convolved-with-kernel density, so the
 // shares of all bins plus the parts before and after the window telescope to
 // exactly 1: nothing is lost or invented by the binning.
+#include <limits>
 #include <vector>
 
 #include <femto/render/time_grid.h>
@@ -61,7 +62,10 @@ struct BinShares {
 
 class TimeDeposit {
  public:
-  TimeDeposit(const TimeGrid& grid, const TimeFilter& filter) : grid_(grid), filter_(filter) {}
+  /// `unboundedHorizon`: horizon() is infinite, so integrators trace light past
+  /// the window and the film keeps it (for a complete steady image and `after`).
+  TimeDeposit(const TimeGrid& grid, const TimeFilter& filter, bool unboundedHorizon = false)
+      : grid_(grid), filter_(filter), unboundedHorizon_(unboundedHorizon) {}
 
   /// Shares of a contribution at `opl` (finite).
   void point(double opl, BinShares& out) const;
@@ -70,8 +74,14 @@ class TimeDeposit {
   /// their midpoint (the closed form would divide rounding noise by the length).
   void interval(double opl0, double opl1, BinShares& out) const;
 
-  /// OPL beyond which nothing reaches the window (window end + kernel radius).
-  double horizon() const { return grid_.end() + filter_.radius() * grid_.binWidth; }
+  /// OPL from which nothing reaches the window (window end + kernel radius),
+  /// or infinity when the film asked for an unbounded horizon. Contributions
+  /// at or past it are not deposited at all (TransientSampleRecorder), so the
+  /// outputs do not depend on how far an integrator traces past the window.
+  double horizon() const {
+    return unboundedHorizon_ ? std::numeric_limits<double>::infinity()
+                             : grid_.end() + filter_.radius() * grid_.binWidth;
+  }
   const TimeGrid& grid() const { return grid_; }
   const TimeFilter& filter() const { return filter_; }
 
@@ -79,6 +89,7 @@ class TimeDeposit {
   double toBins(double opl) const { return (opl - grid_.start) / grid_.binWidth; }
   TimeGrid grid_;
   TimeFilter filter_;
+  bool unboundedHorizon_;
 };
 
 }  // namespace femto

@@ -47,7 +47,8 @@ TimeFilter readTimeFilter(const Properties& props) {
 }  // namespace
 
 TransientFilm::TransientFilm(const Properties& props)
-    : Film(props, "box"), deposit_(readTimeGrid(props), readTimeFilter(props)) {
+    : Film(props, "box"),
+      deposit_(readTimeGrid(props), readTimeFilter(props), props.getBool("complete_steady", false)) {
   // Tiles are written out as soon as they are done, so they must not share
   // pixels: a filter reaching past the pixel a sample falls in would need the
   // neighbouring tiles too (see docs/transient-film.md).

@@ -19,7 +19,7 @@ class TransientFilm : public Film {
   /// Reads the Film parameters (default rfilter: box; filters wider than one
   /// pixel are refused), temporal_bins, start_opl + bin_width_opl or
   /// start_time + bin_width_time (seconds), time_filter + time_filter_width,
-  /// write_volume, write_frames. See src/plugins/films/transient.cpp.
+  /// complete_steady, write_volume, write_frames. See src/plugins/films/transient.cpp.
   explicit TransientFilm(const Properties& props);
 
   const TimeGrid& timeGrid() const { return deposit_.grid(); }

@@ -1,5 +1,6 @@
 #include <femto/render/transient_tile.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <femto/render/scene.h>
@@ -14,6 +15,22 @@ void addScaled(float* dst, const Color3f& value, double share) {
 }
 
 }  // namespace
+
+void TransientSampleRecorder::add(double opl, const Color3f& value) {
+  if (opl >= deposit_.horizon()) return;  // NaN is kept, for valid() to refuse
+  contributions_.push_back({opl, opl, value, false});
+}
+
+void TransientSampleRecorder::addInterval(double opl0, double opl1, const Color3f& value) {
+  double lo = std::min(opl0, opl1), hi = std::max(opl0, opl1), horizon = deposit_.horizon();
+  if (lo >= horizon) return;
+  // The value is spread uniformly over [lo, hi]: keep the part before the horizon.
+  if (hi > horizon) {
+    contributions_.push_back({lo, horizon, value * float((horizon - lo) / (hi - lo)), true});
+    return;
+  }
+  contributions_.push_back({opl0, opl1, value, true});
+}
 
 bool TransientSampleRecorder::valid(const Color3f& weight) const {
   for (const Contribution& c : contributions_)

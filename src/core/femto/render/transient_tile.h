@@ -20,10 +20,12 @@ class Sensor;
 class TransientSampleRecorder final : public RadianceRecorder {
  public:
   explicit TransientSampleRecorder(const TimeDeposit& deposit) : deposit_(deposit) {}
-  void add(double opl, const Color3f& value) override { contributions_.push_back({opl, opl, value, false}); }
-  void addInterval(double opl0, double opl1, const Color3f& value) override {
-    contributions_.push_back({opl0, opl1, value, true});
-  }
+  /// Contributions at or past the horizon are dropped (the part of an
+  /// interval past it too), whether or not the integrator stops its paths
+  /// there: the steady image and `after` then hold exactly the light arriving
+  /// before the horizon, for any integrator.
+  void add(double opl, const Color3f& value) override;
+  void addInterval(double opl0, double opl1, const Color3f& value) override;
   double horizon() const override { return deposit_.horizon(); }
   const TimeGrid& timeGrid() const override { return deposit_.grid(); }
 

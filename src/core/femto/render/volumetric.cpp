@@ -21,16 +21,24 @@ const Medium* mediumAfter(const SurfaceInteraction& si, const Vec3f& d, const Me
   return dot(d, si.n) > 0.0f ? shape->exteriorMedium() : shape->interiorMedium();
 }
 
-bool isPassThrough(const SurfaceInteraction& si) {
-  const BSDF* bsdf = si.bsdf();
-  return !bsdf || bsdf->flags() == BSDFFlags::Null;
-}
+bool isPassThrough(const SurfaceInteraction& si) { return isPassThrough(si.bsdf()); }
+
+bool isPassThrough(const BSDF* bsdf) { return !bsdf || bsdf->flags() == BSDFFlags::Null; }
 
 Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec3f& d, const Point3f& target,
                    float targetDistance, const Medium* medium, float surfaceEta, Sampler& sampler) {
   Connection result;
   bool finite = std::isfinite(targetDistance);
   Ray ray = finite ? from.spawnRayTo(target) : from.spawnRay(d);
+  // Nothing to cross and no medium to attenuate: an occlusion test decides,
+  // cheaper than the full intersection the loop below needs (surface-only
+  // scenes then cost transient_path what they cost `path`).
+  if (!medium && !scene.hasPassThroughShapes()) {
+    if (scene.rayTest(ray)) return result;
+    if (finite) result.opl = double(surfaceEta) * distance(from.p, target);
+    result.transmittance = Color3f(1.0f);
+    return result;
+  }
   Point3f start = from.p;
   Color3f tr(1.0f);
   for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {

@@ -8,6 +8,7 @@
 
 namespace femto {
 
+class BSDF;
 class Medium;
 class Sampler;
 class Scene;
@@ -22,6 +23,8 @@ const Medium* mediumAfter(const SurfaceInteraction& si, const Vec3f& d, const Me
 /// Does light cross this surface unchanged? True for index-matched boundaries
 /// of media: shapes without a BSDF, or with a BSDF that is only Null.
 bool isPassThrough(const SurfaceInteraction& si);
+/// The same test on a shape's BSDF (nullptr: none).
+bool isPassThrough(const BSDF* bsdf);
 
 /// What reaches a point along a connection (next-event estimation).
 struct Connection {
@@ -35,7 +38,8 @@ struct Connection {
 /// refractive index where there is no medium (1 outside dielectrics). The
 /// OPL of each piece is eta times the distance between its exact end points.
 /// Distant connections add no OPL beyond the last surface crossed (light from
-/// infinitely far away has no finite path length).
+/// infinitely far away has no finite path length). Outside media, in a scene
+/// without pass-through surfaces, this is one shadow ray (Scene::rayTest).
 Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec3f& d, const Point3f& target,
                    float targetDistance, const Medium* medium, float surfaceEta, Sampler& sampler);
 
