@@ -50,7 +50,11 @@ const Color3f RampValue(1.0f, 0.5f, 0.25f);
 TEST(TransientFilm, PointSamplesLandInTheExpectedBinsOfVolumeAndFrames) {
   auto dir = test::scratchDir("transient-point");
   const int W = 70, H = 45, Bins = 50;  // partial tiles at the right and bottom; columns >= 50 arrive after the window
-  auto scene = test::makeRampScene(transientFilm(W, H, Bins, 0.0, 1.0), Properties("test_transient_ramp"), 3);
+  // complete_steady: the film keeps what arrives past the window too (in the
+  // steady image and `after`); test_transient_steady_horizon.cpp covers the default.
+  Properties film = transientFilm(W, H, Bins, 0.0, 1.0);
+  film.setBool("complete_steady", true);
+  auto scene = test::makeRampScene(film, Properties("test_transient_ramp"), 3);
   RenderStats stats = render(*scene, dir / "out.exr");
   EXPECT_TRUE(stats.completed);
   EXPECT_EQ(stats.samples, uint64_t(W * H * 3));
@@ -113,6 +117,7 @@ TEST(TransientFilm, SumOverBinsEqualsSteadyRestrictedToTheWindow) {
   film.setString("time_filter", "gaussian");
   film.setFloat("time_filter_width", 0.8);
   film.setBool("write_frames", false);
+  film.setBool("complete_steady", true);  // every column's whole value in the steady image
   Properties ramp("test_transient_ramp");
   ramp.setString("mode", "interval");
   ramp.setFloat("length", 3.0);

@@ -3,6 +3,8 @@
 // film's horizon (window end + time filter reach), so steady = sum of the bins
 // + before + after exactly and, with the box filter, nothing is "after"; with
 // complete_steady = true all light, i.e. the steady render of the same samples.
+// The film enforces the horizon whatever the integrator reports (an interval
+// crossing it keeps its part before it).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,4 +118,41 @@ TEST(TransientSteadyHorizon, CompleteSteadyIsTheSteadyRenderOfTheSameSamples) {
                     1e-5 * std::max(1.0f, s));
       }
   EXPECT_GT(imageSum(transient.after), 0.0) << "light after the window is in `after`";
+}
+
+TEST(TransientSteadyHorizon, FilmDropsWhatArrivesPastTheHorizonAndKeepsThePartOfAnIntervalBeforeIt) {
+  // The test ramp integrator reports, for pixel column x, its value spread
+  // over OPL [x + 0.5, x + 1.5]; the window is [0, 10) in bins of 1 (box
+  // filter), so the horizon is 10: column 9 straddles it, columns >= 10 are past it.
+  const int W = 14, H = 2, Bins = 10;
+  for (bool complete : {false, true}) {
+    SCOPED_TRACE(complete ? "complete_steady" : "default");
+    auto dir = test::scratchDir(complete ? "ramp-horizon-complete" : "ramp-horizon");
+    Properties film("transient");
+    film.setInt("width", W);
+    film.setInt("height", H);
+    film.setInt("temporal_bins", Bins);
+    film.setFloat("bin_width_opl", 1.0f);
+    film.setBool("write_frames", false);
+    film.setBool("complete_steady", complete);
+    Properties ramp("test_transient_ramp");
+    ramp.setString("mode", "interval");
+    auto scene = test::makeRampScene(film, ramp, 2);
+    RenderOptions render;
+    render.output = dir / "ramp.exr";
+    render.progress = false;
+    scene->integrator().render(*scene, render);
+    Bitmap steady = readImage(dir / "ramp.exr"), after = readImage(dir / "ramp_after.exr");
+    int h = 0, w = 0, bins = 0;
+    std::vector<float> volume = test::readVolume(dir / "ramp.npy", h, w, bins);
+    const float value = 1.0f;  // the ramp's red channel
+    for (int x = 0; x < W; ++x) {
+      float binTotal = 0.0f;
+      for (int b = 0; b < Bins; ++b) binTotal += volume[(size_t(x) * Bins + b) * 3];
+      float inWindow = x < Bins - 1 ? value : (x == Bins - 1 ? 0.5f * value : 0.0f);
+      EXPECT_FLOAT_EQ(binTotal, inWindow) << "column " << x;
+      EXPECT_FLOAT_EQ(steady.pixel(x, 0)[0], complete ? value : inWindow) << "column " << x;
+      EXPECT_FLOAT_EQ(after.pixel(x, 0)[0], complete ? value - inWindow : 0.0f) << "column " << x;
+    }
+  }
 }

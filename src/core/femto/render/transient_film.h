@@ -1,8 +1,8 @@
 #pragma once
 // A film with a time axis: per pixel an RGB histogram over time of arrival
-// (measured as optical path length, see time_grid.h), the steady image (every
-// contribution, whatever its time) and the energy that arrived before and
-// after the time window. Rendered only by TransientIntegrators, whose render
+// (measured as optical path length, see time_grid.h), the steady image (all
+// light arriving before the horizon, or all light with complete_steady) and
+// the energy that arrived before and after the time window. Rendered only by TransientIntegrators, whose render
 // loop streams finished tiles straight to disk (transient_output.h); the
 // volume is never held in memory whole. See docs/transient-film.md.
 #include <filesystem>
