@@ -128,7 +128,8 @@ TEST(TransientBeamsRender, VolumeTimeIntegralIsTheSteadyImage) {
   loadSceneStrict("<scene version=\"3.0.0\"/>");
   LoadOptions options;
   options.strict = true;
-  options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "2"}, {"bins", "16"}};
+  options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "2"}, {"bins", "16"},
+                     {"start", "0"}, {"bin_width", "2.5"}};
   auto scene = loadScene(kFogBox, options);
   Rendered r = render(scene, dir / "fog.exr", 3);
   Bitmap before = readImage(dir / "fog_before.exr"), after = readImage(dir / "fog_after.exr");
