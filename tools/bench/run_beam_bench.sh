@@ -1,7 +1,7 @@
 #!/bin/sh
 # Regenerates the "Beam map" section of docs/BENCHMARKS.md: builds
 # femto_bench_beams (Release) and runs it, recording the machine, the load,
-# the commit and the exact command (write_section.sh keeps the other sections).
+# the commit and the exact command (replace_doc_section.py keeps the other sections).
 #   tools/bench/run_beam_bench.sh [build-dir]       (default: build)
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -30,5 +30,5 @@ model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
   cat "$root/tools/bench/beam_bench_notes.md"
   echo
   echo "$table"
-} | tools/bench/write_section.sh docs/BENCHMARKS.md beam-map
+} | /usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md beam-map
 echo "wrote the beam-map section of docs/BENCHMARKS.md"
