@@ -42,7 +42,7 @@ run() {
 median() { cut -d' ' -f"$2" "$1" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 # (a) path vs transient_path, steady film, no medium.
-steady="-D medium=none -D film=hdrfilm -D resolution=128 -D spp=64"
+steady="-D medium=none -D film=hdrfilm -D resolution=128 -D spp=128"
 i=0
 while [ "$i" -lt "$runs" ]; do
   # shellcheck disable=SC2086
@@ -60,7 +60,7 @@ i=0
 while [ "$i" -lt "$runs" ]; do
   for bins in $bin_list; do
     width=$(awk -v b="$bins" 'BEGIN { printf "%.10g", 10.24 / b }')
-    run "bins$bins" -D resolution=64 -D spp=64 -D bins="$bins" -D bin_width="$width" -D frames=false
+    run "bins$bins" -D resolution=64 -D spp=256 -D bins="$bins" -D bin_width="$width" -D frames=false
   done
   i=$((i + 1))
 done
@@ -110,7 +110,7 @@ out=docs/BENCHMARKS.md
   echo
   echo "### transient_path against the number of time bins"
   echo
-  echo "\`femto render $scene -t $threads -D resolution=64 -D spp=64 -D bins=N -D bin_width=10.24/N -D frames=false\`"
+  echo "\`femto render $scene -t $threads -D resolution=64 -D spp=256 -D bins=N -D bin_width=10.24/N -D frames=false\`"
   echo "(the fog scene, window OPL 3 to 13.24, the \`.npy\` volume written: 64 x 64 x N x 3 floats, 192 MiB for 4096 bins)"
   echo
   echo "| bins | CPU time (s) | relative to 64 bins | wall time (s) | CPU times of the runs (s) |"
@@ -135,9 +135,13 @@ out=docs/BENCHMARKS.md
   find boundaries to cross), and transient_path took 1.05-1.15x the CPU time
   of `path` here (interleaved runs at load average ~17).
 - With a transient film the cost per contribution is one bin lookup (box
-  filter), whatever the number of bins. What grows with the bins is per
-  pixel: zeroing and normalising `bins x 3` floats per tile, and writing the
-  `.npy` volume (system time). At 64 spp that stays small next to tracing.
+  filter), whatever the number of bins. What grows with the bins is a fixed
+  cost per pixel, independent of the samples: zeroing and normalising
+  `bins x 3` floats per tile and writing the `.npy` volume (measured here:
+  about 15 ns per bin and pixel, at 64 and at 256 spp). With
+  fewer samples per pixel, or more bins, it is a larger share: split the
+  time window (docs/transient-film.md, "Splitting a render") when a volume
+  gets too large to write.
 TEXT
 } | /usr/bin/python3 tools/bench/replace_doc_section.py "$out" transient-path
 echo "wrote the transient-path section of $out (load average at the end: $load_end)"
