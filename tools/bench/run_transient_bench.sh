@@ -138,7 +138,7 @@ out=docs/BENCHMARKS.md
   filter), whatever the number of bins. What grows with the bins is a fixed
   cost per pixel, independent of the samples: zeroing and normalising
   `bins x 3` floats per tile and writing the `.npy` volume (measured here:
-  about 15 ns per bin and pixel, at 64 and at 256 spp). With
+  15-25 ns per bin and pixel, at 64 and at 256 spp). With
   fewer samples per pixel, or more bins, it is a larger share: split the
   time window (docs/transient-film.md, "Splitting a render") when a volume
   gets too large to write.
