@@ -128,7 +128,9 @@ def summarize(rows, args):
         lines.append(f"time to reach relMSE {target:.4g}:")
         for name, pts in curves.items():
             t = ec.time_to_reach(pts, target)
-            lines.append(f"  {name}: " + (f"{t:.3g} s" if t is not None else "not reached"))
+            # Reached already at the smallest budget: only an upper bound is known.
+            first = t is not None and t == min(s for s, _ in pts)
+            lines.append(f"  {name}: " + ("not reached" if t is None else f"{'<= ' if first else ''}{t:.3g} s"))
     for name, pts in curves.items():
         slope = ec.convergence_slope(pts)
         if slope is not None:
