@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -104,6 +105,9 @@ std::vector<Variant> variants() {
   o = BeamMapOptions();
   o.maxLeafSize = 8;
   v.push_back({"leaf 8", o});
+  o = BeamMapOptions();
+  o.maxLeafSize = 8;
+  v.push_back({"leaf 8", o});
   return v;
 }
 
@@ -137,17 +141,29 @@ QueryStats timeQueries(const std::vector<CameraSegment>& segs, double budget, si
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false;
+  bool quick = false, defaultOnly = false, bruteForce = true;
+  std::vector<size_t> counts{10000, 100000, 1000000};
+  std::vector<float> radii{0.01f, 0.05f};
   for (int i = 1; i < argc; ++i) {
+    bool hasValue = i + 1 < argc;
     if (!std::strcmp(argv[i], "--quick")) {
       quick = true;
+      counts = {2000};
+      radii = {0.02f};
+    } else if (!std::strcmp(argv[i], "--beams") && hasValue) {
+      counts = {size_t(std::atoll(argv[++i]))};
+    } else if (!std::strcmp(argv[i], "--radius") && hasValue) {
+      radii = {float(std::atof(argv[++i]))};
+    } else if (!std::strcmp(argv[i], "--default-only")) {
+      defaultOnly = true;
+    } else if (!std::strcmp(argv[i], "--no-brute-force")) {
+      bruteForce = false;
     } else {
-      std::fprintf(stderr, "usage: femto_bench_beams [--quick]\n");
+      std::fprintf(stderr,
+                   "usage: femto_bench_beams [--quick] [--beams N] [--radius R] [--default-only] [--no-brute-force]\n");
       return 2;
     }
   }
-  std::vector<size_t> counts = quick ? std::vector<size_t>{2000} : std::vector<size_t>{10000, 100000, 1000000};
-  std::vector<float> radii = quick ? std::vector<float>{0.02f} : std::vector<float>{0.01f, 0.05f};
   double budget = quick ? 0.02 : 0.4;
   std::vector<CameraSegment> segs = makeSegments(4096, 99);
 
@@ -158,7 +174,9 @@ int main(int argc, char** argv) {
   for (size_t n : counts) {
     std::vector<Beam> beams = makeBeams(n, 7);
     for (float radius : radii) {
-      for (const Variant& v : variants()) {
+      std::vector<Variant> all = variants();
+      if (defaultOnly) all.resize(1);
+      for (const Variant& v : all) {
         double w0 = wallSeconds(), c0 = cpuSeconds(CLOCK_PROCESS_CPUTIME_ID);
         BeamMap map(beams, radius, v.options);
         double buildWall = wallSeconds() - w0, buildCpu = cpuSeconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
@@ -180,6 +198,7 @@ int main(int argc, char** argv) {
                     f.inRadius > 0 ? f.candidates / f.inRadius : 0.0, f.perSecond);
         std::fflush(stdout);
       }
+      if (!bruteForce) continue;
       // Brute force: every beam through rayBeamIntersect.
       RayBeamHit hit;
       QueryStats b = timeQueries(segs, budget, 16, [&](const CameraSegment& s) {

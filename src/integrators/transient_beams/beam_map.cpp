@@ -344,7 +344,10 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
       continue;
     }
     for (uint32_t i = node.index; i < node.index + node.count; ++i)
-      if (node.count == 1 || s.hits(pieces[i].box.min, pieces[i].box.max)) out.push_back(pieces[i].beam);
+      if (node.count == 1 || s.hits(pieces[i].box.min, pieces[i].box.max))
+        // Neighbouring pieces of one beam often share a leaf or a subtree:
+        // dropping repeats here shrinks the sort below.
+        if (out.empty() || out.back() != pieces[i].beam) out.push_back(pieces[i].beam);
   }
   // Pieces of one beam may all be hit: report each beam once, ascending.
   std::sort(out.begin(), out.end());
