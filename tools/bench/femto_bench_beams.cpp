@@ -82,7 +82,7 @@ struct Variant {
 
 std::vector<Variant> variants() {
   std::vector<Variant> v;
-  v.push_back({"default (pieces 4r, <=4/beam, SAH, leaf 4)", BeamMapOptions()});
+  v.push_back({"default (pieces 4r, <=4/beam, SAH, leaf 8)", BeamMapOptions()});
   BeamMapOptions o;
   o.pieceLengthInRadii = 0.0f;
   v.push_back({"whole beams", o});
@@ -103,11 +103,11 @@ std::vector<Variant> variants() {
   o.maxLeafSize = 2;
   v.push_back({"leaf 2", o});
   o = BeamMapOptions();
-  o.maxLeafSize = 8;
-  v.push_back({"leaf 8", o});
+  o.maxLeafSize = 4;
+  v.push_back({"leaf 4", o});
   o = BeamMapOptions();
-  o.maxLeafSize = 8;
-  v.push_back({"leaf 8", o});
+  o.maxLeafSize = 16;
+  v.push_back({"leaf 16", o});
   return v;
 }
 

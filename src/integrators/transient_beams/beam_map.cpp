@@ -80,7 +80,7 @@ class Builder {
       node.count = uint32_t(n);
       return;
     }
-    size_t mid = split(begin, end, bounds, centroids, depth);
+    size_t mid = split(begin, end, centroids, depth);
     size_t rightBase = base + 2 * (mid - begin);  // the left subtree uses at most 2 nL - 1 slots
     node.index = uint32_t(rightBase);
     node.count = 0;
@@ -97,13 +97,13 @@ class Builder {
  private:
   // Reorders pieces[begin, end) and returns the first index of the right half
   // (strictly inside the range).
-  size_t split(size_t begin, size_t end, const BoundingBox3f& bounds, const BoundingBox3f& centroids, int depth) {
+  size_t split(size_t begin, size_t end, const BoundingBox3f& centroids, int depth) {
     Vec3f ext = centroids.extents();
     int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
     size_t mid = begin + (end - begin) / 2;
     auto center = [axis](const Piece& p) { return p.box.min[axis] + p.box.max[axis]; };
     if (ext[axis] > 0.0f && options_.split == BeamMapOptions::Split::Sah && depth < MaxSahDepth) {
-      size_t sahMid = sahSplit(begin, end, bounds, centroids, axis);
+      size_t sahMid = sahSplit(begin, end, centroids, axis);
       if (sahMid > begin && sahMid < end) return sahMid;
     }
     // Object median (also for coincident centroids, where any split is as
@@ -116,8 +116,7 @@ class Builder {
   // Binned SAH (Wald 2007, "On fast construction of SAH-based bounding
   // volume hierarchies"): the plane between bins minimising
   // A_L n_L + A_R n_R. Returns begin when no plane separates the pieces.
-  size_t sahSplit(size_t begin, size_t end, const BoundingBox3f& bounds, const BoundingBox3f& centroids, int axis) {
-    (void)bounds;
+  size_t sahSplit(size_t begin, size_t end, const BoundingBox3f& centroids, int axis) {
     std::array<BoundingBox3f, SahBins> binBox;
     std::array<size_t, SahBins> binCount{};
     float lo = centroids.min[axis];

@@ -26,7 +26,7 @@ struct BeamMapOptions {
   /// cut above would exceed it, all pieces are lengthened uniformly.
   float maxPiecesPerBeam = 4.0f;
   /// Pieces per BVH leaf (1..16).
-  int maxLeafSize = 4;
+  int maxLeafSize = 8;
   /// Split rule: binned surface area heuristic, or the object median along
   /// the widest centroid axis.
   enum class Split { Sah, Median } split = Split::Sah;
