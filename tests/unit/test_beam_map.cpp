@@ -126,9 +126,10 @@ TEST(BeamMap, SupersetOfBruteForceForEveryOption) {
 }
 
 // Boxes cost candidates: cutting beams keeps the candidate set within a small
-// factor of the exact set. femto_bench_beams measures about 2.5 candidates per
-// beam within the radius with the default pieces and 5.4 with whole beams
-// (docs/BENCHMARKS.md, "Beam map"); 4 fails if the cutting stops working.
+// factor of the exact set. femto_bench_beams measures about 2.6 candidates
+// per beam within the radius with the default pieces and 3.4-9 with whole
+// beams (docs/BENCHMARKS.md, "Beam map"); this set gives 2.3 and 6.1, so 4
+// fails if the cutting stops working.
 TEST(BeamMap, CandidatesStayNearTheExactSet) {
   PCG32 rng(3, 4);
   std::vector<Beam> beams = randomBeams(rng, 4000);

@@ -15,8 +15,6 @@ table=$($command)
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 commit=$(git rev-parse --short HEAD)
 dirty=$(git diff --quiet HEAD -- src tools 2>/dev/null || echo " (with uncommitted changes)")
-section=$(mktemp)
-trap 'rm -f "$section"' EXIT
 model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
 {
   echo "# Beam map"
@@ -51,38 +49,37 @@ inside, direction uniform, ending where they leave it), single-threaded.
   then the estimate for every candidate). The brute-force row runs
   `rayBeamIntersect` on every beam instead.
 - Variants: `whole beams` (no cutting), pieces of 2 or 8 radii, the object
-  median split instead of SAH, and leaves of 1, 2 or 8 pieces instead of 4.
+  median split instead of SAH, and leaves of 1, 2, 4 or 16 pieces instead of 8.
 
 ## Reading the numbers (the choice made)
 
 - Cutting beams matters most: with whole beams, 3-9 times more candidates
   than beams in range come back (long thin diagonal beams have mostly empty
-  boxes) and queries are 1.3-6 times slower than with pieces of about 4 radii.
-  Pieces of 2 radii return the fewest candidates (about 2 per beam in range)
-  but need 2-3 times the memory and build time and query no faster; 8 radii
-  return more candidates. Default: pieces of 4 radii, at most 4 pieces per
-  beam on average (the memory bound: about 250 MB for 1M beams at r = 0.01,
-  the piece length grows when the budget would be exceeded).
-- Leaves of 4 pieces query fastest and use the least memory among 1/2/4;
-  8 is about the same. SAH and the median split are close on these uniformly
-  spread beams (SAH is kept for the clustered beams of real scenes, near
-  lights and in caustics, where the median is known to do worse).
-- Against brute force (every beam through `rayBeamIntersect`, about 20 ns
-  each) the map wins by 18-20x at r = 0.01 and 3-4x at r = 0.05 with 1M
-  beams: at the larger radius a camera segment is within range of ~1% of all
-  beams, so the output itself dominates. Query time grows with the number of
-  beams in range (linear in beam count for a fixed radius), not with the map
-  size: at 1M beams and r = 0.01 a query costs ~150 ns per beam returned,
-  a quarter of it the sort that makes the result ascending and unique.
-- Build time is linear-ish in pieces: about 1.7 s of CPU for 1M beams
-  (3.9M pieces); wall time on this loaded machine is several times that.
-  The tree is identical for any thread count (fixed node ranges per subtree).
+  boxes) and queries are 1.3-5 times slower than with pieces of about 4
+  radii. Pieces of 2 radii return the fewest candidates (about 2 per beam in
+  range) but take twice the memory and build time and query 5-30% slower;
+  8 radii return more candidates. Default: pieces of 4 radii, at most 4
+  pieces per beam on average (the memory bound: about 210 MB for 1M beams at
+  r = 0.01, beams included; the piece length grows when the budget would be
+  exceeded, as at r = 0.01 here).
+- Leaves of 8 or 16 pieces query fastest and take the least memory (testing
+  a few contiguous piece boxes beats visiting more nodes); 8 is the default.
+  The median split is as fast as SAH or faster (up to 9%) on these uniformly
+  spread beams, its best case; SAH is kept for the clustered beams of real
+  scenes (near lights, in caustics), which this benchmark does not measure.
+- Against brute force (every beam through `rayBeamIntersect`, whose
+  division-free early test rejects a far beam in about 6 ns while streaming
+  through memory) the map is about 7x faster at r = 0.01 for 10k-1M beams and
+  1.6-2.8x at r = 0.05, where a camera segment is within range of ~1% of all
+  beams and the output itself dominates. Query time grows with the number of
+  beams in range (linear in beam count at a fixed radius), not with the map's
+  depth: at 1M beams a query costs about 130 ns per beam returned (cache
+  misses into a 200 MB structure, and the sort that makes the result
+  ascending and unique, about a quarter of it in a perf profile).
+- Build: about 1.5 s of CPU for 1M beams (3.9M pieces), scaling linearly;
+  wall time on this loaded machine is 3-4 times that. The tree is identical
+  for any thread count (fixed node ranges per subtree). Peak memory during
+  the build adds 64 bytes per piece for the uncompacted node array.
 TEXT
-} > "$section"
-if [ -x tools/bench/write_section.sh ]; then
-  tools/bench/write_section.sh docs/BENCHMARKS.md beam-map < "$section"
-  echo "wrote the beam-map section of docs/BENCHMARKS.md"
-else
-  cat "$section"
-  echo "tools/bench/write_section.sh is missing: paste the section above into docs/BENCHMARKS.md" >&2
-fi
+} | /usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md beam-map
+echo "wrote the beam-map section of docs/BENCHMARKS.md"
