@@ -13,6 +13,11 @@ using Command = std::function<int()>;
 Command addRenderCommand(CLI::App& app);
 Command addPluginsCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
+// Looking at transient volumes (docs/viewing.md).
+Command addFramesCommand(CLI::App& app);
+Command addStreakCommand(CLI::App& app);
+Command addIntegrateCommand(CLI::App& app);
+Command addProfileCommand(CLI::App& app);
 
 /// Adds `-p,--plugin-dir DIR` (repeatable) to `command`; the returned action puts
 /// the directories first in the plugin search path, in the order given.

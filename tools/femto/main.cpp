@@ -22,6 +22,10 @@ int main(int argc, char** argv) {
   femto::cli::Command render = femto::cli::addRenderCommand(app);
   femto::cli::Command plugins = femto::cli::addPluginsCommand(app);
   femto::cli::Command compare = femto::cli::addCompareCommand(app);
+  femto::cli::Command frames = femto::cli::addFramesCommand(app);
+  femto::cli::Command streak = femto::cli::addStreakCommand(app);
+  femto::cli::Command integrate = femto::cli::addIntegrateCommand(app);
+  femto::cli::Command profile = femto::cli::addProfileCommand(app);
 
   try {
     app.parse(argc, argv);
@@ -35,6 +39,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("plugins")) return plugins();
     if (app.got_subcommand("compare")) return compare();
+    if (app.got_subcommand("frames")) return frames();
+    if (app.got_subcommand("streak")) return streak();
+    if (app.got_subcommand("integrate")) return integrate();
+    if (app.got_subcommand("profile")) return profile();
     return 1;  // unreachable: require_subcommand(1)
   } catch (const femto::Error& e) {
     std::cerr << "error: " << e.what() << '\n';

@@ -84,10 +84,16 @@ NpyVolume NpyVolume::open(const std::filesystem::path& path) {
   if (fd < 0) systemError(path, "open");
   NpyVolume volume(path, fd, 0, 0, 0, 0);  // owns fd from here (closed on throw)
   char prefix[MagicSize + 4];
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) systemError(path, "read");
+  const uint64_t fileSize = uint64_t(info.st_size);
+  if (fileSize < sizeof(prefix)) throw Error(str("\"", path.string(), "\" is not a version 1 .npy file"));
   transferAll(::pread, fd, prefix, sizeof(prefix), 0, path, "read");
   if (std::memcmp(prefix, Magic, MagicSize) != 0 || prefix[6] != 1)
     throw Error(str("\"", path.string(), "\" is not a version 1 .npy file"));
   size_t length = size_t(uint8_t(prefix[8])) | (size_t(uint8_t(prefix[9])) << 8);
+  if (fileSize < sizeof(prefix) + length)
+    throw Error(str("\"", path.string(), "\" is truncated: its .npy header is cut short"));
   std::string text(length, '\0');
   transferAll(::pread, fd, text.data(), length, sizeof(prefix), path, "read");
   long h = 0, w = 0, b = 0, c = 0;
@@ -95,17 +101,17 @@ NpyVolume NpyVolume::open(const std::filesystem::path& path) {
   if (text.find("'descr': '<f4'") == std::string::npos || text.find("'fortran_order': False") == std::string::npos ||
       shape == std::string::npos ||
       std::sscanf(text.c_str() + shape, "'shape': (%ld, %ld, %ld, %ld", &h, &w, &b, &c) != 4 || c != 3 ||
-      h < 1 || w < 1 || b < 1)
-    throw Error(str("\"", path.string(), "\" is not a float32 C-order (height, width, bins, 3) volume"));
+      h <= 0 || w <= 0 || b <= 0 || h > (1 << 20) || w > (1 << 20) || b > (1 << 20))
+    throw Error(str("\"", path.string(), "\" is not a float32 C-order (height, width, bins, 3) volume (its header: ",
+                    text.substr(0, text.find('}') + 1), ")"));
   volume.height_ = int(h), volume.width_ = int(w), volume.bins_ = int(b);
   volume.dataOffset_ = sizeof(prefix) + length;
-  // A short file (an interrupted copy) would otherwise fail later, at the
-  // first read past its end, with a bare I/O error.
-  struct stat st {};
-  uint64_t expected = volume.offsetOf(volume.height_, 0);
-  if (::fstat(fd, &st) == 0 && uint64_t(st.st_size) < expected)
+  // A volume cut short (a copy that failed, a render killed hard) would read
+  // past its end: say so at once rather than at some pixel.
+  const uint64_t expected = volume.offsetOf(int(h), 0);
+  if (fileSize < expected)
     throw Error(str("\"", path.string(), "\" is truncated: a (", h, ", ", w, ", ", b, ", 3) volume needs ", expected,
-                    " bytes, the file has ", st.st_size));
+                    " bytes, the file has ", fileSize));
   return volume;
 }
 

@@ -11,6 +11,7 @@
 
 #include <femto/core/error.h>
 #include <femto/render/volume_info.h>
+#include <femto/view/volume_scan.h>
 
 namespace femto {
 namespace {
@@ -18,48 +19,40 @@ namespace {
 /// Memory for the frames being assembled (one batch).
 constexpr size_t FrameBudgetBytes = size_t(32) << 20;
 
-std::string frameName(int bin, int bins) {
+}  // namespace
+
+std::string frameFileName(int bin, int bins, const std::string& extension) {
   int digits = std::max(5, int(std::to_string(std::max(bins - 1, 0)).size()));
   char name[32];
-  std::snprintf(name, sizeof(name), "frame_%0*d.exr", digits, bin);
-  return name;
+  std::snprintf(name, sizeof(name), "frame_%0*d", digits, bin);
+  return name + extension;
 }
 
-void removeStaleFrames(const std::filesystem::path& dir) {
+void removeStaleFrames(const std::filesystem::path& dir, const std::string& extension) {
   std::error_code ec;
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     std::string name = entry.path().filename().string();
-    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".exr") stale.push_back(entry.path());
+    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == extension) stale.push_back(entry.path());
   }
   for (const auto& p : stale) std::filesystem::remove(p, ec);
 }
 
-}  // namespace
-
 void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes) {
-  const int h = volume.height(), w = volume.width(), bins = volume.bins();
+  const int bins = volume.bins();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(str("cannot create \"", dir.string(), "\": ", ec.message()));
-  removeStaleFrames(dir);
+  removeStaleFrames(dir, ".exr");
   // A batch of frames fills the budget; each pass reads only the batch's bins
   // of every pixel (one contiguous run per pixel), so the volume is read once
   // in total whatever the number of passes.
-  const size_t frameBytes = size_t(w) * h * 3 * sizeof(float);
-  const int batch = int(std::clamp<size_t>(budgetBytes / frameBytes, 1, size_t(bins)));
-  std::vector<float> run(size_t(batch) * 3);
-  std::vector<Bitmap> frames;
+  const int batch = framesPerBatch(volume, budgetBytes);
   for (int b0 = 0; b0 < bins; b0 += batch) {
     const int count = std::min(batch, bins - b0);
-    frames.assign(size_t(count), Bitmap(w, h, 3));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        volume.readBins(y, x, b0, count, run.data());
-        for (int k = 0; k < count; ++k) std::copy_n(&run[size_t(k) * 3], 3, frames[size_t(k)].pixel(x, y));
-      }
+    std::vector<Bitmap> frames = readFrames(volume, b0, count);
     // Frames are independent files: compress and write them in parallel.
-    tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameName(b0 + k, bins), frames[size_t(k)]); });
+    tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameFileName(b0 + k, bins, ".exr"), frames[size_t(k)]); });
   }
 }
 

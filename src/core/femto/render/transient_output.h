@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <femto/image/image_io.h>
 #include <femto/render/npy_volume.h>
@@ -54,5 +55,11 @@ class TransientOutput {
 /// stale frame_*.exr files there are removed first), reading the volume
 /// again for each batch of frames that fits in `budgetBytes`.
 void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes);
+
+/// "frame_00042" + extension: the file of `bin` among `bins` (at least five
+/// digits, zero-padded, so names sort in time order).
+std::string frameFileName(int bin, int bins, const std::string& extension);
+/// Remove frame_*<extension> files from `dir` (left by an earlier, longer sequence).
+void removeStaleFrames(const std::filesystem::path& dir, const std::string& extension);
 
 }  // namespace femto

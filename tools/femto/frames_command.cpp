@@ -1,0 +1,141 @@
+// `femto frames out.npy`: the time bins of a transient volume as PNG frames
+// with one exposure for the whole sequence, optionally in false colour, as a
+// running integral (continuous emission), a contact sheet, a GIF and an MP4.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <set>
+
+#include <tbb/parallel_for.h>
+
+#include <femto/core/error.h>
+#include <femto/render/npy_volume.h>
+#include <femto/render/transient_output.h>
+#include <femto/view/contact_sheet.h>
+#include <femto/view/display.h>
+#include <femto/view/running_integral.h>
+#include <femto/view/volume_scan.h>
+
+#include "arguments.h"
+#include "commands.h"
+#include "ffmpeg.h"
+#include "view_options.h"
+
+namespace fs = std::filesystem;
+
+namespace femto::cli {
+namespace {
+
+struct FramesSettings {
+  std::string volume;
+  std::string output;
+  ExposureSettings exposure;
+  std::string bins;
+  int every = 1;
+  bool runningIntegral = false;
+  bool contactSheet = false;
+  int sheetCount = 16;
+  int sheetColumns = 4;
+  bool gif = false;
+  bool mp4 = false;
+  int fps = 24;
+};
+
+/// `-o` or `<volume stem>_pngs` beside the volume.
+fs::path outputDir(const FramesSettings& settings) {
+  if (!settings.output.empty()) return settings.output;
+  fs::path volume(settings.volume);
+  return volume.parent_path() / (volume.stem().string() + "_pngs");
+}
+
+int writeFramePngs(const FramesSettings& settings) {
+  const NpyVolume volume = NpyVolume::open(settings.volume);
+  const auto [first, end] = parseBinRange(settings.bins, volume.bins());
+  fs::path ffmpeg;
+  if (settings.gif || settings.mp4) ffmpeg = findFfmpeg(settings.gif ? "--gif" : "--mp4");  // fail before the work
+  const bool cumulative = settings.runningIntegral;
+  const float exposure =
+      resolveExposure(settings.exposure, [&] { return volumeLuminances(volume, first, end, cumulative); });
+
+  const fs::path dir = outputDir(settings);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(str("cannot create \"", dir.string(), "\": ", ec.message()));
+  removeStaleFrames(dir, ".png");
+
+  // Shown bins: first, first + every, ... < end; the sheet takes some of them.
+  const int shown = (end - first + settings.every - 1) / settings.every;
+  std::vector<int> sheetIndex(size_t(shown), -1);
+  const std::vector<int> sheetFramesShown = sheetFrames(shown, settings.sheetCount);
+  for (size_t i = 0; i < sheetFramesShown.size(); ++i) sheetIndex[size_t(sheetFramesShown[i])] = int(i);
+  std::unique_ptr<ContactSheet> sheet;
+  if (settings.contactSheet)
+    sheet = std::make_unique<ContactSheet>(volume.width(), volume.height(), int(sheetFramesShown.size()),
+                                           settings.sheetColumns, 2);
+
+  // The running integral starts at bin 0 whatever is shown, so a frame's
+  // values do not depend on --bins.
+  std::vector<double> sum;
+  const int batch = framesPerBatch(volume, VolumeReadBudgetBytes);
+  for (int b0 = cumulative ? 0 : first; b0 < end; b0 += batch) {
+    const int count = std::min(batch, end - b0);
+    std::vector<Bitmap> frames = readFrames(volume, b0, count);
+    if (cumulative) accumulateFrames(frames, sum);
+    tbb::parallel_for(0, count, [&](int k) {
+      const int bin = b0 + k;
+      if (bin < first || (bin - first) % settings.every != 0) return;
+      const Bitmap image = displayImage(frames[size_t(k)], exposure, settings.exposure.falseColour);
+      writePNG(dir / frameFileName(bin, volume.bins(), ".png"), image);
+      if (int index = sheetIndex[size_t((bin - first) / settings.every)]; sheet && index >= 0) sheet->place(index, image);
+    });
+  }
+  std::cout << "wrote " << shown << " frames (bins " << first << " to " << end - 1;
+  if (settings.every > 1) std::cout << ", every " << settings.every;
+  std::cout << (cumulative ? ", running integral" : "") << ") to " << dir.string() << '\n';
+  if (sheet) {
+    writePNG(dir / "contact_sheet.png", sheet->image());
+    std::cout << "wrote " << (dir / "contact_sheet.png").string() << '\n';
+  }
+  const std::string pattern = (dir / "frame_*.png").string();
+  for (const auto& [wanted, name] : {std::pair(settings.gif, "sequence.gif"), std::pair(settings.mp4, "sequence.mp4")}) {
+    if (!wanted) continue;
+    encodeSequence(ffmpeg, pattern, settings.fps, dir / name);
+    std::cout << "wrote " << (dir / name).string() << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addFramesCommand(CLI::App& app) {
+  auto settings = std::make_shared<FramesSettings>();
+  CLI::App* command =
+      app.add_subcommand("frames", "Write the time bins of a transient volume (.npy) as PNG frames, GIF, MP4");
+  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", settings->output, "Folder for the frames (default: <volume stem>_pngs)")
+      ->type_name("DIR");
+  addExposureOptions(*command, settings->exposure);
+  command->add_option("--bins", settings->bins, "Only bins FIRST to END-1 (default: all)")->type_name("FIRST:END");
+  command->add_option("--every", settings->every, "Only every K-th bin of the range")
+      ->type_name("K")
+      ->check(PositiveInteger);
+  command->add_flag("--running-integral", settings->runningIntegral,
+                    "Show the running integral over time: the view of a continuous source switched on at time 0");
+  command->add_flag("--contact-sheet", settings->contactSheet, "Also write contact_sheet.png (evenly spaced frames)");
+  command->add_option("--sheet-frames", settings->sheetCount, "Frames on the contact sheet (default 16)")
+      ->type_name("N")
+      ->check(PositiveInteger);
+  command->add_option("--sheet-columns", settings->sheetColumns, "Columns of the contact sheet (default 4)")
+      ->type_name("N")
+      ->check(PositiveInteger);
+  command->add_flag("--gif", settings->gif, "Also write sequence.gif (needs ffmpeg)");
+  command->add_flag("--mp4", settings->mp4, "Also write sequence.mp4, H.264 (needs ffmpeg)");
+  command->add_option("--fps", settings->fps, "Frames per second of the GIF/MP4 (default 24)")
+      ->type_name("N")
+      ->check(PositiveInteger);
+  return [settings] { return writeFramePngs(*settings); };
+}
+
+}  // namespace femto::cli

@@ -1,0 +1,48 @@
+// `femto integrate out.npy`: the running integral over time of a transient
+// volume (the continuous-emission view of a pulse render) as a new volume.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <femto/render/npy_volume.h>
+#include <femto/view/running_integral.h>
+
+#include "commands.h"
+
+namespace fs = std::filesystem;
+
+namespace femto::cli {
+namespace {
+
+struct IntegrateSettings {
+  std::string volume;
+  std::string output;
+};
+
+int integrate(const IntegrateSettings& settings) {
+  const NpyVolume volume = NpyVolume::open(settings.volume);
+  fs::path output = settings.output;
+  if (output.empty()) {
+    const fs::path input(settings.volume);
+    output = input.parent_path() / (input.stem().string() + "_integral.npy");
+  }
+  writeRunningIntegral(volume, settings.volume, output);
+  std::cout << "wrote " << output.string() << " (running integral over " << volume.bins() << " bins)\n";
+  return 0;
+}
+
+}  // namespace
+
+Command addIntegrateCommand(CLI::App& app) {
+  auto settings = std::make_shared<IntegrateSettings>();
+  CLI::App* command = app.add_subcommand(
+      "integrate", "Write the running integral over time of a transient volume (continuous emission), as .npy");
+  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", settings->output, "Output volume (default: <volume stem>_integral.npy)")
+      ->type_name("FILE");
+  return [settings] { return integrate(*settings); };
+}
+
+}  // namespace femto::cli
