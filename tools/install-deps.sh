@@ -7,6 +7,7 @@ packages=(
   libembree-dev libopenexr-dev libopenimageio-dev libtinyxml2-dev libtbb-dev
   libgtest-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   python3-numpy python3-matplotlib
+  ffmpeg  # femto frames --gif/--mp4 (run as a program, not linked)
 )
 missing=()
 for p in "${packages[@]}"; do
