@@ -109,7 +109,16 @@ integral = np.load(integral_path)
 check(integral.shape == volume.shape and integral.dtype == np.float32, f"integral {integral.shape} {integral.dtype}")
 check(np.allclose(integral, np.cumsum(volume, axis=2), rtol=1e-6, atol=0), "integral is not the cumsum")
 
-# Profile CSV: one row per bin, the hot value in its bin.
+# With the film's sidecar (time window): the profile gets an OPL column and
+# the integral volume a copy of the sidecar.
+with open(os.path.join(WORK, "hot.json"), "w") as f:
+    f.write('{"format": "femto transient volume", "version": 1, "width": %d, "height": %d, "bins": %d, '
+            '"time_unit": "opl", "start_opl": 3, "bin_width_opl": 0.5, "end_opl": %g, "film_width": %d, '
+            '"film_height": %d, "crop": [0, 0, %d, %d], "time_filter": "box"}' % (W, H, BINS, 3 + 0.5 * BINS, W, H, W, H))
+run("integrate", volume_path, "-o", integral_path)
+check(os.path.exists(os.path.join(WORK, "hot_integral.json")), "integrate did not copy the sidecar")
+
+# Profile CSV: one row per bin, the hot value in its bin, OPL at bin centres.
 csv_path = os.path.join(WORK, "profile.csv")
 run("profile", volume_path, "--pixel", f"{HOT_X},{HOT_Y}", "--pixel", "0,0", "-o", csv_path)
 with open(csv_path) as f:
@@ -118,6 +127,7 @@ check(len(rows) == BINS, f"profile has {len(rows)} rows")
 column = f"r_{HOT_X}_{HOT_Y}"
 check([float(r[column]) for r in rows] == [1.0 if b == HOT_BIN else 0.0 for b in range(BINS)], "profile values")
 check(all(float(r["r_0_0"]) == 0.0 for r in rows), "black pixel profile")
+check([float(r["opl"]) for r in rows] == [3 + 0.5 * (b + 0.5) for b in range(BINS)], "profile OPL column")
 
 # Profile plot: two volumes on one plot with an analytic overlay.
 analytic = os.path.join(WORK, "analytic.csv")

@@ -11,6 +11,7 @@
 #include <femto/core/error.h>
 #include <femto/render/npy_volume.h>
 #include <femto/render/transient_output.h>
+#include <femto/render/volume_info.h>
 #include <femto/view/contact_sheet.h>
 #include <femto/view/display.h>
 #include <femto/view/running_integral.h>
@@ -91,6 +92,9 @@ int writeFramePngs(const FramesSettings& settings) {
   }
   std::cout << "wrote " << shown << " frames (bins " << first << " to " << end - 1;
   if (settings.every > 1) std::cout << ", every " << settings.every;
+  if (std::optional<VolumeInfo> info = readVolumeInfo(settings.volume))
+    std::cout << ", OPL " << info->grid.start + first * info->grid.binWidth << " to "
+              << info->grid.start + end * info->grid.binWidth;
   std::cout << (cumulative ? ", running integral" : "") << ") to " << dir.string() << '\n';
   if (sheet) {
     writePNG(dir / "contact_sheet.png", sheet->image());

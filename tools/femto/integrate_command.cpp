@@ -5,6 +5,7 @@
 #include <memory>
 
 #include <femto/render/npy_volume.h>
+#include <femto/render/volume_info.h>
 #include <femto/view/running_integral.h>
 
 #include "commands.h"
@@ -27,6 +28,8 @@ int integrate(const IntegrateSettings& settings) {
     output = input.parent_path() / (input.stem().string() + "_integral.npy");
   }
   writeRunningIntegral(volume, settings.volume, output);
+  // Same window and pixels: the sidecar lets plots and `femto compare` use it.
+  if (std::optional<VolumeInfo> info = readVolumeInfo(settings.volume)) writeVolumeInfo(volumeInfoPath(output), *info);
   std::cout << "wrote " << output.string() << " (running integral over " << volume.bins() << " bins)\n";
   return 0;
 }

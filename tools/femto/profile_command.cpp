@@ -4,10 +4,12 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <femto/core/error.h>
 #include <femto/render/npy_volume.h>
+#include <femto/render/volume_info.h>
 #include <femto/view/exposure.h>
 
 #include "commands.h"
@@ -22,9 +24,13 @@ struct ProfileSettings {
   std::vector<std::string> pixels;
 };
 
-void writeCsv(std::ostream& out, const NpyVolume& volume, const std::vector<Point2i>& pixels) {
+/// `grid`: the volume's time window from its sidecar, if any (adds the
+/// column `opl`, the OPL at each bin's centre).
+void writeCsv(std::ostream& out, const NpyVolume& volume, const std::vector<Point2i>& pixels,
+              const std::optional<TimeGrid>& grid) {
   std::vector<std::vector<float>> runs;
   out << "bin";
+  if (grid) out << ",opl";
   for (const Point2i& p : pixels) {
     runs.emplace_back(size_t(volume.bins()) * 3);
     volume.readBins(p.y, p.x, 0, volume.bins(), runs.back().data());
@@ -34,6 +40,7 @@ void writeCsv(std::ostream& out, const NpyVolume& volume, const std::vector<Poin
   out.precision(9);
   for (int b = 0; b < volume.bins(); ++b) {
     out << b;
+    if (grid) out << ',' << grid->start + (b + 0.5) * grid->binWidth;
     for (const std::vector<float>& run : runs) {
       const float* v = &run[size_t(b) * 3];
       out << ',' << v[0] << ',' << v[1] << ',' << v[2] << ',' << luminanceOf(v);
@@ -46,13 +53,16 @@ int writeProfiles(const ProfileSettings& settings) {
   const NpyVolume volume = NpyVolume::open(settings.volume);
   std::vector<Point2i> pixels;
   for (const std::string& text : settings.pixels) pixels.push_back(parsePixel(text, volume.width(), volume.height()));
+  std::optional<TimeGrid> grid;
+  if (std::optional<VolumeInfo> info = readVolumeInfo(settings.volume); info && info->grid.bins == volume.bins())
+    grid = info->grid;
   if (settings.output.empty() || settings.output == "-") {
-    writeCsv(std::cout, volume, pixels);
+    writeCsv(std::cout, volume, pixels, grid);
     return 0;
   }
   std::ofstream file(settings.output);
   if (!file) throw Error(str("cannot write \"", settings.output, "\""));
-  writeCsv(file, volume, pixels);
+  writeCsv(file, volume, pixels, grid);
   if (!file.flush()) throw Error(str("cannot write \"", settings.output, "\""));
   return 0;
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerate the README's animation: scenes/cornell-box-fog rendered small with
 # a transient integrator, its time bins turned into a GIF by `femto frames`.
-#   tools/view/make_readme_gif.sh                      # transient_path, 64 spp
+#   tools/view/make_readme_gif.sh                      # transient_path, 256 spp
 #   INTEGRATOR=transient_beams SPP=16 tools/view/make_readme_gif.sh
 # Settings (environment): INTEGRATOR, SPP, RESOLUTION, BINS, EVERY (keep every
 # K-th bin), FPS, THREADS, FEMTO (the femto program), OUT (the GIF). Prints the
@@ -12,11 +12,11 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 femto=${FEMTO:-$root/build/bin/femto}
 integrator=${INTEGRATOR:-transient_path}
-spp=${SPP:-64}
+spp=${SPP:-256}
 resolution=${RESOLUTION:-128}
-bins=${BINS:-256}
-every=${EVERY:-2}
-fps=${FPS:-20}
+bins=${BINS:-128}
+every=${EVERY:-1}
+fps=${FPS:-15}
 out=${OUT:-$root/docs/images/cornell-box-fog.gif}
 threads=${THREADS:-0}
 
