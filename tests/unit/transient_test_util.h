@@ -1,6 +1,6 @@
 #pragma once
 // A RadianceRecorder that keeps every (OPL, value) contribution of a camera
-// sample: the unit-test harness of transient integrators.
+// sample (and the pulse of its emitter): the unit-test harness of transient integrators.
 #include <utility>
 #include <vector>
 
@@ -11,9 +11,14 @@ namespace femto::test {
 class CollectingRecorder final : public RadianceRecorder {
  public:
   explicit CollectingRecorder(double horizon = Infinity) : horizon_(horizon) {}
-  void add(double opl, const Color3f& value) override { hits.emplace_back(opl, value); }
+  void add(double opl, const Color3f& value) override { addPulsed(opl, opl, value, EmissionPulse()); }
   void addInterval(double opl0, double opl1, const Color3f& value) override {
-    hits.emplace_back(0.5 * (opl0 + opl1), value);
+    addPulsed(opl0, opl1, value, EmissionPulse());
+  }
+  /// Kept at the interval's midpoint plus the pulse's offset; the pulse in `pulses`.
+  void addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) override {
+    hits.emplace_back(0.5 * (opl0 + opl1) + pulse.offset(), value);
+    pulses.push_back(pulse);
   }
   double horizon() const override { return horizon_; }
   const TimeGrid& timeGrid() const override { return grid_; }
@@ -25,6 +30,7 @@ class CollectingRecorder final : public RadianceRecorder {
   }
 
   std::vector<std::pair<double, Color3f>> hits;
+  std::vector<EmissionPulse> pulses;  // of each hit
 
  private:
   double horizon_;

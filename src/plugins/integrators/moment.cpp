@@ -36,6 +36,8 @@ class SteadySumRecorder final : public RadianceRecorder {
  public:
   void add(double, const Color3f& value) override { sum += value; }
   void addInterval(double, double, const Color3f& value) override { sum += value; }
+  // Pulses are normalised (continuous: the steady value is the total), so they do not change the sum.
+  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
   double horizon() const override { return Infinity; }
   const TimeGrid& timeGrid() const override { return grid_; }
   Color3f sum{0.0f};

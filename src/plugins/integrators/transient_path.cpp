@@ -21,9 +21,13 @@
 // the light segment. With observer_time = false the camera segment (sensor to
 // the first scattering vertex) is left out, so wavefronts show where light is
 // rather than when the camera sees it (Marco et al., fig. "with and without
-// observer time"). Emitters are Dirac pulses at OPL 0 (pulse shapes: later).
-// Emission from environment or directional emitters is recorded at the OPL
-// of the last vertex: light from infinitely far away has no finite path.
+// observer time"). Every contribution is reported for a Dirac emission at
+// OPL 0 together with its emitter's pulse (Emitter::pulse(): the emitter hit,
+// the one next-event estimation sampled, or each environment emitter), and
+// the film convolves it with the pulse exactly (RadianceRecorder::addPulsed),
+// so pulses cost no extra samples or noise. Emission from environment or
+// directional emitters is recorded at the OPL of the last vertex: light from
+// infinitely far away has no finite path.
 //
 // Depth counts path segments, as in Mitsuba: max_depth = 1 gives only
 // emitters seen directly, 2 adds single scattering and direct illumination.
@@ -164,12 +168,14 @@ class TransientPathIntegrator final : public TransientIntegrator {
                       RadianceRecorder& recorder) const {
     if (!si.emitter() || (hideEmitters_ && s.depth == 0)) return;
     Color3f Le = emissionFound(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev);
-    if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
+    if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
   }
 
   void recordEnvironment(const Scene& scene, const PathState& s, RadianceRecorder& recorder) const {
-    Color3f Le = environmentFound(scene, s.ray, s.prev);
-    if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
+    for (const Emitter* emitter : scene.environmentEmitters()) {
+      Color3f Le = environmentFound(scene, s.ray, s.prev, emitter);
+      if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, emitter->pulse());
+    }
   }
 
   /// Next-event estimation from vertex `ref` (a surface, or a medium point
@@ -190,7 +196,8 @@ class TransientPathIntegrator final : public TransientIntegrator {
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
     float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
-    recorder.add(s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight);
+    recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
+                       ds.emitter->pulse());
   }
 
   bool scatterInMedium(const Scene& scene, PathState& s, const Point3f& p, Sampler& sampler,

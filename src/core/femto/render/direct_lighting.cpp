@@ -44,9 +44,10 @@ Color3f emissionFound(const Scene& scene, const SurfaceInteraction& hit, const V
                              scene.pdfEmitterDirection(from.p, ds, emitter));
 }
 
-Color3f environmentFound(const Scene& scene, const Ray& ray, const ScatterOrigin& from) {
+Color3f environmentFound(const Scene& scene, const Ray& ray, const ScatterOrigin& from, const Emitter* only) {
   Color3f result(0.0f);
   for (const Emitter* emitter : scene.environmentEmitters()) {
+    if (only && emitter != only) continue;
     Color3f Le = emitter->evalEnvironment(ray);
     if (Le.isBlack()) continue;
     float weight = 1.0f;

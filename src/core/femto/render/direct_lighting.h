@@ -13,6 +13,7 @@
 namespace femto {
 
 class BSDF;
+class Emitter;
 class Scene;
 struct Ray;
 struct SurfaceInteraction;
@@ -51,7 +52,8 @@ Color3f emissionFound(const Scene& scene, const SurfaceInteraction& hit, const V
                       const ScatterOrigin& from);
 
 /// Radiance of the environment emitters along a ray that escaped the scene,
-/// each MIS-weighted against emitter sampling from `from`.
-Color3f environmentFound(const Scene& scene, const Ray& ray, const ScatterOrigin& from);
+/// each MIS-weighted against emitter sampling from `from`; only that of
+/// `only` when given (transient integrators record each emitter with its pulse).
+Color3f environmentFound(const Scene& scene, const Ray& ray, const ScatterOrigin& from, const Emitter* only = nullptr);
 
 }  // namespace femto

@@ -8,6 +8,7 @@ Emitter::Emitter(const Properties& props) {
   samplingWeight_ = props.getFloat("sampling_weight", 1.0f);
   if (!(samplingWeight_ >= 0.0f) || !std::isfinite(samplingWeight_))
     props.raise("sampling_weight", str("must be a finite value >= 0, got ", samplingWeight_));
+  pulse_ = EmissionPulse::fromProperties(props);
 }
 
 Color3f Emitter::eval(const SurfaceInteraction&, const Vec3f&) const { return Color3f(0.0f); }

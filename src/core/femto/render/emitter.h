@@ -5,11 +5,13 @@
 
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
+#include <femto/render/emission_pulse.h>
 #include <femto/render/interaction.h>
 #include <femto/render/spectrum.h>
 
 namespace femto {
 
+class Emitter;
 class Shape;
 class Scene;
 
@@ -21,6 +23,7 @@ struct DirectionSample {
   float dist = 0.0f;  // distance from the reference point to p (Infinity for distant lights)
   float pdf = 0.0f;   // solid-angle density at the reference point (1 for delta lights)
   bool delta = false;
+  const Emitter* emitter = nullptr;  // set by Scene::sampleEmitterDirection (its pulse, for transient integrators)
 };
 
 /// Next-event sample of a light at a single `position` (point and spot
@@ -42,7 +45,8 @@ inline float sampleDeltaPosition(const Point3f& position, const Point3f& ref, Di
 
 class Emitter : public Object {
  public:
-  /// Reads "sampling_weight" (default 1).
+  /// Reads "sampling_weight" (default 1) and the temporal profile (`pulse`,
+  /// `pulse_sigma`/`pulse_fwhm`, `pulse_width`, `pulse_offset`: emission_pulse.h).
   explicit Emitter(const Properties& props);
   ObjectKind kind() const override { return ObjectKind::Emitter; }
 
@@ -69,9 +73,12 @@ class Emitter : public Object {
   virtual void setScene(const Scene& scene);
 
   float samplingWeight() const { return samplingWeight_; }
+  /// When this emitter emits (transient rendering); a Dirac at OPL 0 by default.
+  const EmissionPulse& pulse() const { return pulse_; }
 
  private:
   float samplingWeight_ = 1.0f;
+  EmissionPulse pulse_;
 };
 
 }  // namespace femto

@@ -92,6 +92,7 @@ Color3f Scene::sampleEmitterDirection(const SurfaceInteraction& ref, const Point
   const Emitter& emitter = *emitters_[i];
   Color3f value = emitter.sampleDirection(ref.p, uReused, ds);
   if (ds.pdf <= 0.0f || value.isBlack()) return Color3f(0.0f);
+  ds.emitter = &emitter;
   float pick = emitterPickProbability(&emitter);
   ds.pdf *= pick;
   value = value / pick;

@@ -14,9 +14,19 @@
 // G is the CDF of the box-interval-convolved-with-kernel density, so the
 // shares of all bins plus the parts before and after the window telescope to
 // exactly 1: nothing is lost or invented by the binning.
+//
+// Emitter pulses (emission_pulse.h) are one more convolution (pulsed()):
+// a box pulse of width w is a second box, G(a) = second difference of K2
+// (K2 = integral of K1) over the interval length and w, divided by both; a
+// gaussian pulse replaces the kernel (it needs the box time filter: no closed
+// form convolves it with a tent or a truncated gaussian); a continuous pulse
+// (step) gives each bin the *level* of the running integral averaged over the
+// bin, which is the CDF at the bin's end of the contribution convolved with a
+// one-bin box.
 #include <limits>
 #include <vector>
 
+#include <femto/render/emission_pulse.h>
 #include <femto/render/time_grid.h>
 
 namespace femto {
@@ -43,6 +53,8 @@ class TimeFilter {
   double cdf(double x) const;
   /// K1(x): integral of K over (-inf, x]; equals x for x >= radius (symmetric kernels).
   double cdfIntegral(double x) const;
+  /// K2(x): integral of K1 over (-inf, x]; equals (x^2 + variance) / 2 for x >= radius.
+  double cdfIntegral2(double x) const;
   const char* name() const;
 
  private:
@@ -54,10 +66,15 @@ class TimeFilter {
 /// Bin shares of one contribution: weights[k] is the share of bin first + k;
 /// before/after are the shares falling before the window or at/after its end.
 /// weights + before + after sum to 1 (up to rounding).
+/// Continuous emission (a step) instead gives levels: weights[k] is the
+/// running integral averaged over bin first + k, every bin >= stepFrom gets
+/// the whole value (stepFrom = -1: none), `before` is the level at the window
+/// start and `after` the part still to arrive at its end.
 struct BinShares {
   int first = 0;
   std::vector<double> weights;
   double before = 0.0, after = 0.0;
+  int stepFrom = -1;
 };
 
 class TimeDeposit {
@@ -73,6 +90,11 @@ class TimeDeposit {
   /// order). Intervals shorter than ~1e-9 bins are deposited as a point at
   /// their midpoint (the closed form would divide rounding noise by the length).
   void interval(double opl0, double opl1, BinShares& out) const;
+  /// Shares of a contribution over [opl0, opl1] (a point when equal) for a
+  /// Dirac emission at OPL 0, emitted instead with `pulse`: the contribution
+  /// convolved with the pulse (and the kernel), exactly. Throws for a
+  /// gaussian pulse unless the filter is box.
+  void pulsed(double opl0, double opl1, const EmissionPulse& pulse, BinShares& out) const;
 
   /// OPL from which nothing reaches the window (window end + kernel radius),
   /// or infinity when the film asked for an unbounded horizon. Contributions

@@ -4,6 +4,8 @@
 
 #include <limits>
 
+#include <femto/core/error.h>
+#include <femto/render/emitter.h>
 #include <femto/render/render_loop.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_film.h>
@@ -19,6 +21,8 @@ class SumRecorder final : public RadianceRecorder {
  public:
   void add(double, const Color3f& value) override { sum += value; }
   void addInterval(double, double, const Color3f& value) override { sum += value; }
+  // Pulses are normalised (continuous: its steady image is the total), so the steady value is the sum.
+  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
   double horizon() const override { return std::numeric_limits<double>::infinity(); }
   const TimeGrid& timeGrid() const override { return grid_; }
   Color3f sum{0.0f};
@@ -27,12 +31,23 @@ class SumRecorder final : public RadianceRecorder {
   TimeGrid grid_;  // bins == 0: steady
 };
 
+/// Refuse, before rendering, pulses the film cannot deposit exactly.
+void checkEmitterPulses(const Scene& scene, const TransientFilm& film) {
+  if (film.timeFilter().type() == TimeFilter::Type::Box) return;
+  for (const auto& emitter : scene.emitters())
+    if (emitter->pulse().type() == EmissionPulse::Type::Gaussian)
+      throw Error(str(emitter->toString(), (emitter->id().empty() ? "" : " (id \"" + emitter->id() + "\")"),
+                      " has a gaussian pulse, which needs the transient film's time_filter \"box\", not \"",
+                      film.timeFilter().name(), "\": the pulse already smooths in time (widen it instead)"));
+}
+
 RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const RenderOptions& options, int passes,
                             const TransientPassFunction& passIntegrator) {
+  checkEmitterPulses(scene, film);
   TransientOutput output(film, options.output);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
-    std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, film.timeDeposit().horizon());
+    std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
     TransientRenderContext context{scene, *integrator, film.timeDeposit()};
     auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
       return std::make_unique<TransientTile>(offset, size, context);
@@ -52,6 +67,14 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
 }
 
 }  // namespace
+
+void RadianceRecorder::addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) {
+  if (!pulse.isDelta()) throw Error(str("this radiance recorder cannot deposit a ", pulse.name(), " emission pulse"));
+  if (opl0 == opl1)
+    add(opl0 + pulse.offset(), value);
+  else
+    addInterval(opl0 + pulse.offset(), opl1 + pulse.offset(), value);
+}
 
 RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
                                   const TransientPassFunction& passIntegrator) {

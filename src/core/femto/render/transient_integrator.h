@@ -8,6 +8,7 @@
 #include <memory>
 
 #include <femto/math/ray.h>
+#include <femto/render/emission_pulse.h>
 #include <femto/render/integrator.h>
 #include <femto/render/spectrum.h>
 #include <femto/render/time_grid.h>
@@ -26,8 +27,17 @@ class RadianceRecorder {
   /// Radiance whose total is `value`, spread uniformly over [opl0, opl1]
   /// (photon-beam estimates cover an interval; opl0 == opl1 behaves like add()).
   virtual void addInterval(double opl0, double opl1, const Color3f& value) = 0;
+  /// A contribution over [opl0, opl1] (a point when equal) computed for a
+  /// Dirac emission at OPL 0, from an emitter that emits with `pulse`
+  /// (Emitter::pulse()): the film deposits it convolved with the pulse,
+  /// exactly (TimeDeposit::pulsed). Its steady total is `value` for every
+  /// pulse. The default handles delta pulses (add/addInterval at the shifted
+  /// OPL) and refuses others; film and steady recorders override it.
+  virtual void addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse);
   /// Contributions at OPL >= horizon() cannot reach the film's window: an
-  /// integrator may stop a path once its OPL passes it (Infinity for steady films).
+  /// integrator may stop a path once its OPL passes it (Infinity for steady
+  /// films). It allows for the scene's emitter pulses: a path whose Dirac
+  /// OPL is tau reaches the film from tau + the earliest pulse offset on.
   virtual double horizon() const = 0;
   /// The film's time axis (bins == 0 for steady films).
   virtual const TimeGrid& timeGrid() const = 0;
@@ -44,7 +54,8 @@ class TransientIntegrator : public Integrator {
 };
 
 /// Progressive transient rendering (photon beams): before pass `pass`, called
-/// serially with the film's horizon (Infinity for steady films), returns the
+/// serially with the film's horizon (allowing for the scene's emitter pulses:
+/// pulsedHorizon in transient_tile.h; Infinity for steady films), returns the
 /// integrator that renders that pass -- e.g. one holding the pass's photon
 /// maps, released when the pass ends so memory stays that of one pass.
 using TransientPassFunction = std::function<std::shared_ptr<const TransientIntegrator>(int pass, double horizon)>;

@@ -16,34 +16,52 @@ namespace femto {
 class Scene;
 class Sensor;
 
+/// The recorder horizon for a scene: the deposit's horizon minus the
+/// earliest offset of any emitter's pulse (a gaussian pulse can make light
+/// arrive before a path's Dirac OPL, a delayed one after it).
+double pulsedHorizon(const TimeDeposit& deposit, const Scene& scene);
+
 /// Records one camera sample's contributions for a transient film.
 class TransientSampleRecorder final : public RadianceRecorder {
  public:
-  explicit TransientSampleRecorder(const TimeDeposit& deposit) : deposit_(deposit) {}
-  /// Contributions at or past the horizon are dropped (the part of an
-  /// interval past it too), whether or not the integrator stops its paths
-  /// there: the steady image and `after` then hold exactly the light arriving
-  /// before the horizon, for any integrator.
-  void add(double opl, const Color3f& value) override;
-  void addInterval(double opl0, double opl1, const Color3f& value) override;
-  double horizon() const override { return deposit_.horizon(); }
+  /// `horizon`: see pulsedHorizon (default: the deposit's, for Dirac pulses at 0).
+  explicit TransientSampleRecorder(const TimeDeposit& deposit) : TransientSampleRecorder(deposit, deposit.horizon()) {}
+  TransientSampleRecorder(const TimeDeposit& deposit, double horizon) : deposit_(deposit), horizon_(horizon) {}
+  /// Contributions arriving at or past the deposit's horizon are dropped (the
+  /// part of an interval past it too), whether or not the integrator stops its
+  /// paths there: the steady image and `after` then hold exactly the light
+  /// arriving before the horizon, for any integrator. A non-delta pulse is
+  /// dropped when even its earliest emission arrives past it, else kept whole.
+  void add(double opl, const Color3f& value) override { addPulsed(opl, opl, value, EmissionPulse()); }
+  void addInterval(double opl0, double opl1, const Color3f& value) override {
+    addPulsed(opl0, opl1, value, EmissionPulse());
+  }
+  void addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) override;
+  double horizon() const override { return horizon_; }
   const TimeGrid& timeGrid() const override { return deposit_.grid(); }
 
-  void clear() { contributions_.clear(); }
+  void clear() { contributions_.clear(), hasSteps_ = false; }
   /// All values valid (finite, non-negative) after scaling by `weight`, all OPLs finite?
   bool valid(const Color3f& weight) const;
+  /// Does any contribution come from a continuous pulse (commit needs `steps`)?
+  bool hasSteps() const { return hasSteps_; }
   /// Add `weight` x the contributions to one pixel: `bins` (bins x 3 floats),
-  /// `steady`, `before`, `after` (RGB each).
-  void commit(const Color3f& weight, float* bins, float* steady, float* before, float* after);
+  /// `steady`, `before`, `after` (RGB each). Continuous pulses add their
+  /// whole value to every bin from some bin on: that is recorded once, in
+  /// `steps` (bins x 3 floats, the derivative of those runs; may be null when
+  /// !hasSteps()), and prefix-summed when the tile is done.
+  void commit(const Color3f& weight, float* bins, float* steady, float* before, float* after, float* steps = nullptr);
 
  private:
   struct Contribution {
-    double opl0, opl1;
+    double opl0, opl1;  // equal: a point
     Color3f value;
-    bool interval;
+    EmissionPulse pulse;
   };
   const TimeDeposit& deposit_;
+  double horizon_;
   std::vector<Contribution> contributions_;
+  bool hasSteps_ = false;
   BinShares shares_;
 };
 
@@ -62,7 +80,8 @@ class TransientTile final : public TileAccumulator {
   const Point2i& offset() const { return offset_; }
   const Point2i& size() const { return size_; }
   int bins() const { return bins_; }
-  /// Divide every quantity of every pixel by the pixel's sample weight
+  /// Add the running sums of the continuous-pulse steps to the bins, then
+  /// divide every quantity of every pixel by the pixel's sample weight
   /// (pixels without samples become 0): the developed values.
   void normalize();
   /// Pixel (x, y) relative to the tile: bins x 3 floats; a tile row is contiguous.
@@ -80,6 +99,7 @@ class TransientTile final : public TileAccumulator {
   const TransientRenderContext& context_;
   TransientSampleRecorder recorder_;
   std::vector<float> volume_, steady_, before_, after_, weight_;
+  std::vector<float> steps_;  // continuous-pulse step derivative (bins x 3 per pixel), allocated on first use
 };
 
 }  // namespace femto
