@@ -44,12 +44,13 @@ void fillShares(double uLo, double uHi, double radius, int bins, const Cdf& G, B
 /// box). Differences of K, K1, K2 (see the header).
 double boxesCdf(const TimeFilter& f, double u0, double L, double w, double a) {
   const double r = f.radius(), x = a - u0;
-  if (x >= L + w + r) return 1.0;  // exact 0 / 1 outside the support
+  // Exact 0 / 1 outside the support. A point (box filter) on a bin's left
+  // edge belongs to that bin: there G is still 0 (K(0) = 0).
+  if (L == 0.0 && w == 0.0) return x > r ? 1.0 : (x <= -r ? 0.0 : f.cdf(x));
+  if (x >= L + w + r) return 1.0;
   if (x <= -r) return 0.0;
   double g;
-  if (L == 0.0 && w == 0.0)
-    g = f.cdf(x);
-  else if (L == 0.0 || w == 0.0)
+  if (L == 0.0 || w == 0.0)
     g = (f.cdfIntegral(x) - f.cdfIntegral(x - (L + w))) / (L + w);
   else
     g = (f.cdfIntegral2(x) - f.cdfIntegral2(x - L) - f.cdfIntegral2(x - w) + f.cdfIntegral2(x - L - w)) / (L * w);
@@ -139,28 +140,14 @@ double TimeFilter::cdfIntegral2(double x) const {
 }
 
 void TimeDeposit::point(double opl, BinShares& out) const {
-  double u = toBins(opl), r = filter_.radius();
-  // Exact 0/1 outside the support, so far-away samples give exact zeros.
-  auto G = [&](double a) {
-    double x = a - u;
-    return x > r ? 1.0 : (x <= -r ? 0.0 : filter_.cdf(x));
-  };
-  fillShares(u, u, r, grid_.bins, G, out);
+  const double u = toBins(opl);
+  fillShares(u, u, filter_.radius(), grid_.bins, [&](double a) { return boxesCdf(filter_, u, 0.0, 0.0, a); }, out);
 }
 
 void TimeDeposit::interval(double opl0, double opl1, BinShares& out) const {
-  double u0 = toBins(std::min(opl0, opl1)), u1 = toBins(std::max(opl0, opl1));
-  double length = u1 - u0, r = filter_.radius();
-  // Below this length the closed form loses its digits to cancellation (its
-  // numerator is a difference of values of size ~r); a point is exact to
-  // within the length, far below float precision of the film.
-  if (!(length > 1e-9 * std::max(1.0, r))) return point(grid_.start + 0.5 * (u0 + u1) * grid_.binWidth, out);
-  auto G = [&](double a) {
-    if (a - u1 >= r) return 1.0;
-    if (a - u0 <= -r) return 0.0;
-    return std::clamp((filter_.cdfIntegral(a - u0) - filter_.cdfIntegral(a - u1)) / length, 0.0, 1.0);
-  };
-  fillShares(u0, u1, r, grid_.bins, G, out);
+  double u0 = toBins(std::min(opl0, opl1)), L = toBins(std::max(opl0, opl1)) - u0, w = 0.0;
+  collapseShortBoxes(u0, L, w, filter_.radius());  // below ~1e-9 bins: a point at the midpoint
+  fillShares(u0, u0 + L, filter_.radius(), grid_.bins, [&](double a) { return boxesCdf(filter_, u0, L, 0.0, a); }, out);
 }
 
 void TimeDeposit::pulsed(double opl0, double opl1, const EmissionPulse& pulse, BinShares& out) const {
