@@ -140,3 +140,32 @@ TEST(TransientBeamsMedia, WithoutObserverTimeOnlyTheLightsPathCounts) {
   }
   EXPECT_GT(meanShift, 0.5) << "the camera segments' length, on average";
 }
+
+TEST(TransientBeamsMedia, EmitterPulseOffsetShiftsEveryContribution) {
+  // Photons leave at OPL 0 and contributions carry their emitter's pulse: a
+  // delta pulse at OPL 1.5 shifts every beam estimate by exactly 1.5.
+  const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
+  SingleScattering model{d};
+  auto plain = singleScatteringScene(model);
+  auto delayed = loadSceneStrict(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.8"/><float name="albedo" value="0.75"/></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/>
+    <float name="pulse_offset" value="1.5"/></emitter>
+</scene>)");
+  beams::BeamSettings settings;
+  settings.photonCount = 20000;
+  settings.radius = settings.surfaceRadius = 0.05f;
+  settings.maxDepth = 2;
+  beams::BeamPass a(*plain, settings, 0, 5, Infinity), b(*delayed, settings, 0, 5, Infinity);
+  auto samplerA = seededSampler(4), samplerB = seededSampler(4);
+  CollectingRecorder ra, rb;
+  a.sample(*plain, Ray(Point3f(0.0f), d), *samplerA, ra);
+  b.sample(*delayed, Ray(Point3f(0.0f), d), *samplerB, rb);
+  ASSERT_EQ(ra.hits.size(), rb.hits.size());
+  ASSERT_GT(ra.hits.size(), 100u);
+  for (size_t i = 0; i < ra.hits.size(); ++i) {
+    EXPECT_NEAR(rb.hits[i].first, ra.hits[i].first + 1.5, 1e-9);
+    EXPECT_EQ(rb.hits[i].second, ra.hits[i].second);
+  }
+}

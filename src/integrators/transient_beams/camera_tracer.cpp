@@ -52,17 +52,18 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
     bool hit = scene.rayIntersect(s.ray, si);
     if (s.medium) {
       float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, horizon);
-      if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(s, tMax, sampler, recorder);
+      if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, sampler, recorder);
       if (!hit) return;  // escaping through a medium: attenuated to nothing
       s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
       if (s.throughput.isBlack()) return;
     }
     const int depth = s.segments + 1;  // the segment just travelled
     if (!hit) {
-      if (!(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth)) {
-        Color3f Le = environmentFound(scene, s.ray, prev);
-        if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
-      }
+      if (!(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth))
+        for (const Emitter* emitter : scene.environmentEmitters()) {
+          Color3f Le = environmentFound(scene, s.ray, prev, emitter);
+          if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, emitter->pulse());
+        }
       return;
     }
     float eta = s.medium ? s.medium->eta() : s.surfaceEta;
@@ -72,7 +73,7 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
     if (!std::isfinite(s.opl) || s.opl >= horizon) return;
     if (si.emitter() && !(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth)) {
       Color3f Le = emissionFound(scene, si, s.ray.d, si.t, prev);  // prev.delta: the distance is unused
-      if (!Le.isBlack()) recorder.add(s.opl, s.throughput * Le);
+      if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
     }
     if (isPassThrough(si)) {
       s.medium = mediumAfter(si, s.ray.d, s.medium);
@@ -84,7 +85,7 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
     const BSDF& bsdf = *si.bsdf();
     if (bsdf.hasSmooth()) {
       nextEvent(scene, s, si, sampler, recorder);
-      gatherSurfacePhotons(s, si, recorder);
+      gatherSurfacePhotons(scene, s, si, recorder);
       if (!(bsdf.flags() & BSDFFlags::Delta)) return;
     }
     // Follow the specular components (mirror, glass, a coating's reflection):
@@ -105,7 +106,8 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
   }
 }
 
-void CameraTracer::gatherBeams(const Path& s, float tMax, Sampler& sampler, RadianceRecorder& recorder) {
+void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sampler& sampler,
+                               RadianceRecorder& recorder) {
   const Medium& medium = *s.medium;
   CameraSegment segment;
   segment.ray = Ray(s.vertex, s.ray.d);  // from the exact vertex, where the path's OPL is s.opl
@@ -136,7 +138,8 @@ void CameraTracer::gatherBeams(const Path& s, float tMax, Sampler& sampler, Radi
     value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
-    recorder.addInterval(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value);
+    recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,
+                       scene.emitters()[beam.emitter]->pulse());
   }
 }
 
@@ -154,10 +157,12 @@ void CameraTracer::nextEvent(const Scene& scene, const Path& s, const SurfaceInt
   if (f.isBlack()) return;
   Connection c = connect(scene, si, ds.d, ds.p, ds.dist, mediumAfter(si, ds.d, s.medium), s.surfaceEta, sampler);
   if (c.transmittance.isBlack()) return;
-  recorder.add(s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance);
+  recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance,
+                     ds.emitter->pulse());
 }
 
-void CameraTracer::gatherSurfacePhotons(const Path& s, const SurfaceInteraction& si, RadianceRecorder& recorder) {
+void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const SurfaceInteraction& si,
+                                        RadianceRecorder& recorder) {
   const float r = maps_.surfaceRadius;
   maps_.photons.query(si.p, r, scratch_);
   if (scratch_.empty()) return;
@@ -178,7 +183,8 @@ void CameraTracer::gatherSurfacePhotons(const Path& s, const SurfaceInteraction&
     // eval() includes |cos wo|: divide it out to get f (Jensen's estimate uses f alone).
     Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
     if (f.isBlack()) continue;
-    recorder.add(opl, s.throughput * f * photon.power * float(norm));
+    recorder.addPulsed(opl, opl, s.throughput * f * photon.power * float(norm),
+                       scene.emitters()[photon.emitter]->pulse());
   }
 }
 

@@ -18,6 +18,12 @@
 // Jensen 2001 eq. 7.6), deposited at photon OPL + camera OPL. Emitters seen
 // directly or through specular chains are recorded as found.
 //
+// Time of emission: every contribution is computed for a Dirac emission at
+// OPL 0 and reported with the pulse of the emitter its light came from (the
+// one a beam or surface photon names, the one NEE sampled, the one seen),
+// so the film convolves it with the pulse exactly (RadianceRecorder::addPulsed):
+// no emission times are sampled, and continuous emission works too.
+//
 // Transport split (no light counted twice): beams carry everything arriving
 // at a medium point (store = all) or only unscattered light (store = single:
 // single scattering, multiple scattering in media is then absent); NEE carries
@@ -61,10 +67,11 @@ class CameraTracer {
 
  private:
   struct Path;
-  void gatherBeams(const Path& path, float tMax, Sampler& sampler, RadianceRecorder& recorder);
+  void gatherBeams(const Scene& scene, const Path& path, float tMax, Sampler& sampler, RadianceRecorder& recorder);
   void nextEvent(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                  RadianceRecorder& recorder);
-  void gatherSurfacePhotons(const Path& path, const SurfaceInteraction& si, RadianceRecorder& recorder);
+  void gatherSurfacePhotons(const Scene& scene, const Path& path, const SurfaceInteraction& si,
+                            RadianceRecorder& recorder);
 
   const BeamSettings& settings_;
   const PassMaps& maps_;

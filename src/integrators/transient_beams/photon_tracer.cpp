@@ -88,8 +88,8 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   ph.emitter = uint16_t(emitterIndex);
   Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
   ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
-  // Emission time from the emitter's pulse: Dirac at OPL 0 until emitters have pulses.
-  sampler.next1D();
+  // Emitted at OPL 0: the camera side reports every contribution with the
+  // pulse of the emitter the photon names, and the film convolves exactly.
   ph.opl = 0.0;
   if (ph.power.isBlack() || !ph.power.isValid()) return;
   ph.medium = mediumAround(scene_, ph.ray);
