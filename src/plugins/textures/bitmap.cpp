@@ -72,6 +72,7 @@ class BitmapTexture final : public Texture {
   /// Mean over texels: exact for nearest lookups and, up to the border
   /// treatment, for bilinear ones.
   Color3f mean() const override { return mean_; }
+  Point2i resolution() const override { return Point2i(image_.width, image_.height); }
 
   std::string toString() const override {
     return str("BitmapTexture[filename=\"", filename_, "\", ", image_.width, "x", image_.height,

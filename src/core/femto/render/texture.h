@@ -16,6 +16,9 @@ class Texture : public Object {
   virtual Color3f eval(const SurfaceInteraction& si) const = 0;
   /// Average value over the texture (for albedo estimates and sampling weights).
   virtual Color3f mean() const = 0;
+  /// Size in texels of the image behind the texture, (0, 0) for procedural
+  /// ones: a projector takes its aspect ratio from it, as Mitsuba does.
+  virtual Point2i resolution() const { return Point2i(0, 0); }
 };
 
 /// A texture with one value everywhere (core-side; not a plugin).

@@ -1,0 +1,103 @@
+// projector: a point light that projects an image like a slide projector (the
+// reverse of a perspective camera, as Mitsuba 3's projector). The image is
+// the irradiance it casts on a virtual image plane at distance 1 in front of
+// the light: the plane spans [-tan(fov/2), tan(fov/2)] along the light's x
+// axis and the same times height/width (the texture's aspect ratio) along y,
+// with the image's top-left corner at local (+x, +y), as femto's perspective
+// camera sees its film from the same to_world. Delta in position: found only
+// by next-event estimation.
+//
+// Irradiance E on the plane at unit distance from a point source of
+// intensity I is E = I cos^3(theta) (inverse square of 1/cos(theta), times
+// the cosine of incidence), so the intensity toward a direction with
+// cos(theta) = z is I = scale * E(uv) / z^3 and the power is exactly
+// scale * mean(E) * (area of the plane): photons are emitted uniformly over
+// the plane, each carrying power / (number of photons) in expectation.
+//
+// | name       | type      | default  | meaning                                                   | unit   |
+// |------------|-----------|----------|-----------------------------------------------------------|--------|
+// | irradiance | texture   | 1        | irradiance on the image plane at distance 1 (bitmap or rgb) | W / m^2 per channel |
+// | scale      | float     | 1        | multiplies the irradiance                                 | -      |
+// | fov        | float     | 28.8415  | horizontal field of view (Mitsuba 3's default: 50 mm lens)  | degrees |
+// | to_world   | transform | identity | position (origin) and orientation (+z forward, +y up)     | -      |
+// | sampling_weight | float | 1       | relative probability of being picked for NEE              | -      |
+#include <cmath>
+
+#include <femto/core/plugin.h>
+#include <femto/math/transform.h>
+#include <femto/render/emitter.h>
+#include <femto/render/texture.h>
+
+namespace femto {
+
+class ProjectorLight final : public Emitter {
+ public:
+  explicit ProjectorLight(const Properties& props)
+      : Emitter(props),
+        irradiance_(textureOrColor(props, "irradiance", Color3f(1.0f))),
+        scale_(props.getFloat("scale", 1.0f)),
+        toWorld_(props.getTransform("to_world", Transform())) {
+    if (!(scale_ >= 0.0f && std::isfinite(scale_))) props.raise("scale", str("must be finite and >= 0, got ", scale_));
+    fov_ = props.getFloat("fov", 28.8415f);
+    if (!(fov_ > 0.0f && fov_ < 180.0f)) props.raise("fov", str("must be in (0, 180) degrees, got ", fov_));
+    Point2i size = irradiance_->resolution();
+    float aspect = size.x > 0 && size.y > 0 ? float(size.y) / float(size.x) : 1.0f;
+    tanX_ = std::tan(degToRad(fov_) * 0.5f);
+    tanY_ = tanX_ * aspect;
+    position_ = toWorld_.point(Point3f(0.0f));
+  }
+
+  bool isDelta() const override { return true; }
+
+  Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
+    float dist2 = sampleDeltaPosition(position_, ref, ds);
+    if (!(dist2 > 0.0f)) return Color3f(0.0f);
+    return intensityInLocal(normalize(toWorld_.inverse().vector(-ds.d))) / dist2;
+  }
+
+  float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0.0f; }
+
+  /// Uniform over the image plane: the direction density is
+  /// 1 / (planeArea z^3) (d omega = z^3 dA at unit distance), so the weight I / pdf is scale * E(uv) * planeArea.
+  Color3f sampleRay(const Point2f&, const Point2f& uDirection, Ray& ray) const override {
+    Vec3f local((1.0f - 2.0f * uDirection.x) * tanX_, (1.0f - 2.0f * uDirection.y) * tanY_, 1.0f);
+    ray = Ray(position_, normalize(toWorld_.vector(local)));
+    return irradianceAt(uDirection) * (scale_ * planeArea());
+  }
+
+  Color3f power() const override { return irradiance_->mean() * (scale_ * planeArea()); }
+
+  std::string toString() const override {
+    return str("ProjectorLight[position=", position_, ", fov=", fov_, ", scale=", scale_,
+               ", irradiance=", irradiance_->toString(), "]");
+  }
+
+ private:
+  float planeArea() const { return 4.0f * tanX_ * tanY_; }
+
+  Color3f irradianceAt(const Point2f& uv) const {
+    SurfaceInteraction si;
+    si.uv = uv;
+    return irradiance_->eval(si);
+  }
+
+  /// scale * E(uv) / z^3 for a unit direction in the light's frame; black
+  /// outside the image's frustum.
+  Color3f intensityInLocal(const Vec3f& d) const {
+    if (!(d.z > 0.0f)) return Color3f(0.0f);
+    Point2f uv(0.5f * (1.0f - d.x / (d.z * tanX_)), 0.5f * (1.0f - d.y / (d.z * tanY_)));
+    if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)) return Color3f(0.0f);
+    return irradianceAt(uv) * (scale_ / (d.z * d.z * d.z));
+  }
+
+  std::shared_ptr<Texture> irradiance_;
+  float scale_;
+  Transform toWorld_;
+  Point3f position_;
+  float fov_ = 0.0f, tanX_ = 0.0f, tanY_ = 0.0f;
+};
+
+}  // namespace femto
+
+FEMTO_EXPORT_PLUGIN(femto::ProjectorLight, Emitter, "projector",
+                    "Projector: a point light casting an image (irradiance on a plane at distance 1)")
