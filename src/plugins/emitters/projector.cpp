@@ -25,18 +25,17 @@
 
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
-#include <femto/render/emitter.h>
+#include <femto/render/oriented_point_emitter.h>
 #include <femto/render/texture.h>
 
 namespace femto {
 
-class ProjectorLight final : public Emitter {
+class ProjectorLight final : public OrientedPointEmitter {
  public:
   explicit ProjectorLight(const Properties& props)
-      : Emitter(props),
+      : OrientedPointEmitter(props),
         irradiance_(textureOrColor(props, "irradiance", Color3f(1.0f))),
-        scale_(props.getFloat("scale", 1.0f)),
-        toWorld_(props.getTransform("to_world", Transform())) {
+        scale_(props.getFloat("scale", 1.0f)) {
     if (!(scale_ >= 0.0f && std::isfinite(scale_))) props.raise("scale", str("must be finite and >= 0, got ", scale_));
     fov_ = props.getFloat("fov", 28.8415f);
     if (!(fov_ > 0.0f && fov_ < 180.0f)) props.raise("fov", str("must be in (0, 180) degrees, got ", fov_));
@@ -44,24 +43,13 @@ class ProjectorLight final : public Emitter {
     float aspect = size.x > 0 && size.y > 0 ? float(size.y) / float(size.x) : 1.0f;
     tanX_ = std::tan(degToRad(fov_) * 0.5f);
     tanY_ = tanX_ * aspect;
-    position_ = toWorld_.point(Point3f(0.0f));
   }
-
-  bool isDelta() const override { return true; }
-
-  Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
-    float dist2 = sampleDeltaPosition(position_, ref, ds);
-    if (!(dist2 > 0.0f)) return Color3f(0.0f);
-    return intensityInLocal(normalize(toWorld_.inverse().vector(-ds.d))) / dist2;
-  }
-
-  float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0.0f; }
 
   /// Uniform over the image plane: the direction density is
   /// 1 / (planeArea z^3) (d omega = z^3 dA at unit distance), so the weight I / pdf is scale * E(uv) * planeArea.
   Color3f sampleRay(const Point2f&, const Point2f& uDirection, Ray& ray) const override {
     Vec3f local((1.0f - 2.0f * uDirection.x) * tanX_, (1.0f - 2.0f * uDirection.y) * tanY_, 1.0f);
-    ray = Ray(position_, normalize(toWorld_.vector(local)));
+    ray = rayAlongLocal(local);
     return irradianceAt(uDirection) * (scale_ * planeArea());
   }
 
@@ -83,7 +71,7 @@ class ProjectorLight final : public Emitter {
 
   /// scale * E(uv) / z^3 for a unit direction in the light's frame; black
   /// outside the image's frustum.
-  Color3f intensityInLocal(const Vec3f& d) const {
+  Color3f intensityInLocal(const Vec3f& d) const override {
     if (!(d.z > 0.0f)) return Color3f(0.0f);
     Point2f uv(0.5f * (1.0f - d.x / (d.z * tanX_)), 0.5f * (1.0f - d.y / (d.z * tanY_)));
     if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)) return Color3f(0.0f);
@@ -92,8 +80,6 @@ class ProjectorLight final : public Emitter {
 
   std::shared_ptr<Texture> irradiance_;
   float scale_;
-  Transform toWorld_;
-  Point3f position_;
   float fov_ = 0.0f, tanX_ = 0.0f, tanY_ = 0.0f;
 };
 

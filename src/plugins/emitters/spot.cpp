@@ -19,17 +19,16 @@
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
 #include <femto/math/warp.h>
-#include <femto/render/emitter.h>
+#include <femto/render/oriented_point_emitter.h>
 #include <femto/render/texture.h>
 
 namespace femto {
 
-class SpotLight final : public Emitter {
+class SpotLight final : public OrientedPointEmitter {
  public:
   explicit SpotLight(const Properties& props)
-      : Emitter(props),
-        intensity_(props.getColor("intensity", Color3f(1.0f))),
-        toWorld_(props.getTransform("to_world", Transform())) {
+      : OrientedPointEmitter(props),
+        intensity_(props.getColor("intensity", Color3f(1.0f))) {
     if (!intensity_.isValid()) props.raise("intensity", "must be finite and non-negative");
     float cutoffDeg = props.getFloat("cutoff_angle", 20.0f);
     if (!(cutoffDeg > 0.0f && cutoffDeg <= 90.0f))
@@ -51,24 +50,12 @@ class SpotLight final : public Emitter {
       texture_ = std::dynamic_pointer_cast<Texture>(props.getObject("texture"));
       if (!texture_) props.raise("texture", "expected a <texture>");
     }
-    position_ = toWorld_.point(Point3f(0.0f));
   }
-
-  bool isDelta() const override { return true; }
-
-  Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
-    float dist2 = sampleDeltaPosition(position_, ref, ds);
-    if (!(dist2 > 0.0f)) return Color3f(0.0f);
-    // Intensity toward the reference point, over distance squared (inverse-square law).
-    return intensityInLocal(normalize(toWorld_.inverse().vector(-ds.d))) / dist2;
-  }
-
-  float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0.0f; }
 
   /// Uniform directions in the cutoff cone (as Mitsuba): weight I(d) / pdf.
   Color3f sampleRay(const Point2f&, const Point2f& uDirection, Ray& ray) const override {
     Vec3f local = warp::squareToUniformCone(uDirection, cosCutoff_);
-    ray = Ray(position_, normalize(toWorld_.vector(local)));
+    ray = rayAlongLocal(local);
     float pdf = warp::squareToUniformConePdf(local, cosCutoff_);
     return pdf > 0.0f ? intensityInLocal(local) / pdf : Color3f(0.0f);
   }
@@ -94,7 +81,7 @@ class SpotLight final : public Emitter {
 
  private:
   /// Mitsuba's falloff for a unit direction in the light's frame.
-  Color3f intensityInLocal(const Vec3f& d) const {
+  Color3f intensityInLocal(const Vec3f& d) const override {
     float cosTheta = d.z;
     if (!(cosTheta > cosCutoff_)) return Color3f(0.0f);
     Color3f value = intensity_;
@@ -108,8 +95,6 @@ class SpotLight final : public Emitter {
   }
 
   Color3f intensity_;
-  Transform toWorld_;
-  Point3f position_;
   float cutoff_, beamWidth_, cosCutoff_, cosBeamWidth_, tanCutoff_;
   std::shared_ptr<Texture> texture_;
 };
