@@ -19,12 +19,13 @@ const Point3f kLight(0.5f, -0.3f, 2.0f);
 const Color3f kIntensity(1.0f, 2.0f, 3.0f);
 const Color3f kRho(0.2f, 0.5f, 0.8f);
 
-std::shared_ptr<Scene> planeScene(const std::string& integratorParams, const std::string& extra = "") {
+std::shared_ptr<Scene> planeScene(const std::string& integratorParams, const std::string& extra = "",
+                                  const std::string& bsdfParams = "") {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path">)", integratorParams, R"(</integrator>
   <shape type="rectangle">
     <transform name="to_world"><scale value="20"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/>)", bsdfParams, R"(</bsdf>
   </shape>
   <emitter type="point"><point name="position" x="0.5" y="-0.3" z="2"/><rgb name="intensity" value="1, 2, 3"/></emitter>
   )", extra, "</scene>"));
@@ -57,6 +58,38 @@ TEST(TransientPathOPL, PointLightOverPlaneIsExact) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(recorder.hits[0].second[c], expected[c], 1e-5f * expected[c]);
     }
   }
+}
+
+// Every BSDF takes a scattering delay (constant + exponential lifetime): it
+// shifts the light scattered at the plane and leaves its value alone.
+TEST(TransientPathOPL, BsdfScatteringDelayShiftsTheReflectedLight) {
+  const Point3f camera(1.0f, 2.0f, 3.0f), x(0.2f, 0.4f, 0.0f);
+  const Ray ray(camera, normalize(x - camera));
+  const double undelayed = distance(kLight, x) + distance(x, camera);
+  auto constant = planeScene("", "", R"(<float name="delay" value="0.3"/>)");
+  auto sampler = seededSampler(4);
+  CollectingRecorder once;
+  transientIntegrator(*constant).sample(*constant, ray, *sampler, once);
+  ASSERT_EQ(once.hits.size(), 1u);
+  EXPECT_NEAR(once.hits[0].first, undelayed + 0.3, 1e-5 * undelayed);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(once.hits[0].second[c], planeRadiance(x)[c], 1e-5f);
+
+  // delay 0.1 + Exp(mean 0.2): the mean shift is 0.3 (5 sigma of the sample
+  // mean, sigma = 0.2 / sqrt(n)), and nothing arrives before the constant part.
+  auto fluorescent = planeScene("", "", R"(<float name="delay" value="0.1"/><float name="lifetime" value="0.2"/>)");
+  const int n = 4000;
+  double sum = 0.0, earliest = Infinity;
+  for (int i = 0; i < n; ++i) {
+    CollectingRecorder recorder;
+    transientIntegrator(*fluorescent).sample(*fluorescent, ray, *sampler, recorder);
+    ASSERT_EQ(recorder.hits.size(), 1u);
+    double shift = recorder.hits[0].first - undelayed;
+    sum += shift;
+    earliest = std::min(earliest, shift);
+  }
+  EXPECT_NEAR(sum / n, 0.3, 5.0 * 0.2 / std::sqrt(double(n)));
+  EXPECT_GE(earliest, 0.1 - 1e-5);
+  EXPECT_THROW(planeScene("", "", R"(<float name="delay" value="-1"/>)"), Error);
 }
 
 TEST(TransientPathOPL, ContradictoryOrUnsupportedTimeParametersAreErrors) {

@@ -83,6 +83,10 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
     }
     s.segments = depth;
     const BSDF& bsdf = *si.bsdf();
+    if (bsdf.hasDelay()) {  // scattering here takes time: it delays NEE, surface photons and specular paths alike
+      s.opl += bsdf.sampleDelay(sampler.next1D());
+      if (s.opl >= horizon) return;
+    }
     if (bsdf.hasSmooth()) {
       nextEvent(scene, s, si, sampler, recorder);
       gatherSurfacePhotons(scene, s, si, recorder);

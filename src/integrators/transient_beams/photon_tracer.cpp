@@ -148,6 +148,9 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
       Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
       photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter});
     }
+    // A photon stored above has not scattered here yet: the camera side adds
+    // this vertex's delay when it gathers it.
+    if (bsdf.hasDelay()) ph.opl += bsdf.sampleDelay(sampler.next1D());
     BSDFSample bs;
     Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
     if (!(bs.pdf > 0.0f) || weight.isBlack()) return;

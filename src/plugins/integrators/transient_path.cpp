@@ -232,6 +232,10 @@ class TransientPathIntegrator final : public TransientIntegrator {
                         RadianceRecorder& recorder) const {
     if (!enterScatteringVertex(s)) return false;
     const BSDF& bsdf = *si.bsdf();
+    if (bsdf.hasDelay()) {  // time spent scattering here delays everything that leaves this vertex
+      s.opl += bsdf.sampleDelay(sampler.next1D());
+      if (s.opl >= recorder.horizon()) return false;
+    }
     if (bsdf.hasSmooth()) {
       nextEvent(scene, s, si, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
         Vec3f local = si.toLocal(wo);

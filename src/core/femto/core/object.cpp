@@ -18,4 +18,6 @@ std::optional<ObjectKind> kindFromTag(std::string_view tag) {
 
 std::string Object::toString() const { return std::string(kindTag(kind())) + (id_.empty() ? "" : " id=\"" + id_ + "\""); }
 
+void Object::readCommonParameters(const Properties&) {}
+
 }  // namespace femto

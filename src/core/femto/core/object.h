@@ -8,6 +8,8 @@
 
 namespace femto {
 
+class Properties;
+
 /// The kinds of scene objects, named as in the XML tag that creates them.
 /// The numeric values are part of the plugin ABI: append only.
 enum class ObjectKind : int {
@@ -40,6 +42,11 @@ class Object {
   /// The id="" the scene gave this object (empty when none).
   const std::string& id() const { return id_; }
   void setId(std::string id) { id_ = std::move(id); }
+  /// Parameters every object of a kind takes whatever its plugin (e.g. a
+  /// BSDF's scattering delay), read by the kind's base class. The plugin
+  /// manager calls it right after the plugin's constructor, so plugins need
+  /// not forward them.
+  virtual void readCommonParameters(const Properties& props);
 
  private:
   std::string id_;

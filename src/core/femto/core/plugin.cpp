@@ -178,6 +178,7 @@ ObjectRef PluginManager::create(ObjectKind expected, const Properties& props) {
   ObjectRef object;
   try {
     object.reset(descriptor.create(props));
+    if (object) object->readCommonParameters(props);
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {

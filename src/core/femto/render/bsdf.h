@@ -6,6 +6,7 @@
 
 #include <femto/core/object.h>
 #include <femto/render/interaction.h>
+#include <femto/render/scattering_delay.h>
 #include <femto/render/spectrum.h>
 
 namespace femto {
@@ -52,6 +53,16 @@ class BSDF : public Object {
 
   bool hasSmooth() const { return (flags() & BSDFFlags::Smooth) != 0; }
   bool isDeltaOnly() const { return (flags() & BSDFFlags::Smooth) == 0; }
+
+  /// Every BSDF takes `delay` and `lifetime` (render/scattering_delay.h):
+  /// time spent in each scattering event at the surface (0 by default).
+  void readCommonParameters(const Properties& props) override { delay_ = ScatteringDelay(props); }
+  bool hasDelay() const { return delay_.any(); }
+  /// Extra optical path length of one scattering event, from u in [0, 1).
+  double sampleDelay(float u) const { return delay_.sample(u); }
+
+ private:
+  ScatteringDelay delay_;
 };
 
 }  // namespace femto

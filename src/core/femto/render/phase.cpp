@@ -1,25 +1,11 @@
 #include <femto/render/phase.h>
 
-#include <cmath>
-
 namespace femto {
 
-PhaseFunction::PhaseFunction(const Properties& props)
-    : delay_(props.getFloat("delay", 0.0f)), lifetime_(props.getFloat("lifetime", 0.0f)) {
-  if (!(delay_ >= 0.0) || !std::isfinite(delay_)) props.raise("delay", str("must be finite and >= 0, got ", delay_));
-  if (!(lifetime_ >= 0.0) || !std::isfinite(lifetime_))
-    props.raise("lifetime", str("must be finite and >= 0, got ", lifetime_));
-}
+PhaseFunction::PhaseFunction(const Properties& props) : delay_(props) {}
 
-double PhaseFunction::sampleDelay(float u) const {
-  // Inverse CDF of the exponential distribution with mean `lifetime`.
-  double exponential = lifetime_ > 0.0 ? -lifetime_ * std::log1p(-double(u)) : 0.0;
-  return delay_ + exponential;
-}
+double PhaseFunction::sampleDelay(float u) const { return delay_.sample(u); }
 
-std::string PhaseFunction::delayString() const {
-  if (!hasDelay()) return "";
-  return str(", delay=", delay_, ", lifetime=", lifetime_);
-}
+std::string PhaseFunction::delayString() const { return delay_.toString(); }
 
 }  // namespace femto

@@ -8,14 +8,11 @@
 //
 // Scattering may take time (fluorescence-like lifetimes, transient RTE of
 // Marco et al., "Transient Photon Beams", eq. 2): every phase function reads
-//
-// | name     | type  | default | meaning                                              | unit |
-// |----------|-------|---------|------------------------------------------------------|------|
-// | delay    | float | 0       | constant extra optical path added at every scattering | OPL  |
-// | lifetime | float | 0       | mean of an exponentially distributed extra delay      | OPL  |
+// `delay` and `lifetime` (render/scattering_delay.h).
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
 #include <femto/math/vector.h>
+#include <femto/render/scattering_delay.h>
 
 namespace femto {
 
@@ -37,14 +34,14 @@ class PhaseFunction : public Object {
   /// delay + an exponential variate of mean lifetime (0 by default).
   virtual double sampleDelay(float u) const;
   /// Does scattering take time at all? (Integrators skip sampleDelay otherwise.)
-  bool hasDelay() const { return delay_ > 0.0 || lifetime_ > 0.0; }
+  bool hasDelay() const { return delay_.any(); }
 
  protected:
   /// "delay=..., lifetime=..." for toString() of derived classes ("" when both are 0).
   std::string delayString() const;
 
  private:
-  double delay_ = 0.0, lifetime_ = 0.0;
+  ScatteringDelay delay_;
 };
 
 }  // namespace femto
