@@ -3,8 +3,11 @@
 // values at a small size; the glass ball of the caustic scene delays its
 // caustic by (eta - 1) 2R; without observer time the first light reaching a
 // pixel left the light exactly |light -> visible point| earlier, i.e. the
-// wavefronts are centred on the light. Geometry is probed from the loaded
-// scene files, not copied from them.
+// wavefronts are centred on the light; the caustic scene's continuous
+// emission (-D pulse=continuous) is the running integral of its Dirac
+// sequence and ends at the steady image; transient_beams' frames of the
+// glass/mirror-balls scene integrate to its steady image. Geometry is probed
+// from the loaded scene files, not copied from them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include <femto/image/image_io.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
@@ -21,6 +25,7 @@
 #include <femto/render/volumetric.h>
 #include <femto/xml/loader.h>
 
+#include "continuous_pulse_check.h"
 #include "media_test_util.h"
 #include "render_test_util.h"
 #include "transient_film_test_util.h"
@@ -52,6 +57,32 @@ std::vector<float> renderVolume(const Scene& scene, const std::filesystem::path&
   EXPECT_TRUE(stats.completed);
   EXPECT_EQ(stats.invalidSamples, 0u) << "NaN, Inf or negative samples";
   return readVolume(dir / (stem + ".npy"), h, w, bins);
+}
+
+/// A rendered transient film: the volume and the steady/before/after images.
+struct TransientRender {
+  std::vector<float> volume;
+  int h = 0, w = 0, bins = 0;
+  Bitmap steady, before, after;
+  float v(int x, int y, int b, int c) const { return volume[((size_t(y) * w + x) * bins + b) * 3 + c]; }
+};
+
+TransientRender renderTransient(const Scene& scene, const std::filesystem::path& dir, const std::string& stem) {
+  TransientRender r;
+  r.volume = renderVolume(scene, dir, stem, r.h, r.w, r.bins);
+  r.steady = readImage(dir / (stem + ".exr"));
+  r.before = readImage(dir / (stem + "_before.exr"));
+  r.after = readImage(dir / (stem + "_after.exr"));
+  return r;
+}
+
+/// The brightest value of an image: the scale of float rounding in sums of its contributions.
+double brightest(const Bitmap& image) {
+  double m = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) m = std::max(m, double(image.pixel(x, y)[c]));
+  return m;
 }
 
 /// A closed octahedron in the Armadillo's frame (feet at y = -54.2, 151
@@ -242,4 +273,63 @@ TEST(SeedScenes, WithoutObserverTimeWavefrontsAreCentredOnTheLight) {
   // The first arrival needs a sample near the nearest point; at 128 spp all
   // but a few pixels get one.
   EXPECT_GE(matched, int(0.9 * tested));
+}
+
+TEST(SeedScenes, ContinuousEmissionIsTheRunningIntegralOfTheDiracSequenceAndEndsAtTheSteadyImage) {
+  // The shipped caustic scene with its light's pulse delta, then continuous,
+  // same seed and time axis. complete_steady traces paths past the window, so
+  // `after` measures what the window misses: the window (OPL 0 to 96) must
+  // outlast every path of max_depth 10 (segments of at most ~9 in this scene).
+  auto dir = scratchDir("seed-continuous");
+  std::map<std::string, std::string> defines = {{"resolution", "16"}, {"height", "12"}, {"spp", "16"},
+                                                {"start", "0"},       {"bins", "96"},    {"bin_width", "1"},
+                                                {"complete_steady", "true"}};
+  defines["pulse"] = "delta";
+  TransientRender dirac = renderTransient(*loadSeedScene("seed-coloured-mirrors-caustic", defines), dir, "dirac");
+  defines["pulse"] = "continuous";
+  TransientRender step = renderTransient(*loadSeedScene("seed-coloured-mirrors-caustic", defines), dir, "continuous");
+  ASSERT_EQ(step.bins, 96);
+  const double scale = brightest(dirac.steady);
+  ASSERT_GT(scale, 0.0);
+  const double slack = 1e-5 * scale + 1e-7;  // float rounding of sums of the same contributions
+  for (int y = 0; y < dirac.h; ++y)
+    for (int x = 0; x < dirac.w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double steady = dirac.steady.pixel(x, y)[c];
+        ASSERT_EQ(dirac.after.pixel(x, y)[c], 0.0f) << "pixel " << x << "," << y << ": light after the window";
+        EXPECT_NEAR(step.steady.pixel(x, y)[c], steady, slack) << "the steady image does not depend on the pulse";
+        EXPECT_NEAR(step.v(x, y, step.bins - 1, c), steady, slack)
+            << "pixel " << x << "," << y << ": the last continuous frame is the steady image";
+      }
+  EXPECT_TRUE(isRunningIntegralOf(step.volume, dirac.volume, dirac.before, dirac.w, dirac.h, dirac.bins, scale));
+}
+
+TEST(SeedScenes, TransientBeamsFramesIntegrateToTheirSteadyImage) {
+  // The glass/mirror-balls scene through -D integrator=transient_beams (its
+  // default photon count and radii; the shared <integrator> block passes only
+  // max_depth and observer_time), the window (OPL 0 to 12) covering most of
+  // the light: the volume summed over bins plus before and after is the
+  // steady image (every beam and photon estimate is deposited exactly).
+  auto dir = scratchDir("seed-beams-steady");
+  auto scene = loadSeedScene("seed-glass-mirror-balls", {{"integrator", "transient_beams"},
+                                                         {"resolution", "12"},
+                                                         {"spp", "1"},
+                                                         {"start", "0"},
+                                                         {"bins", "48"},
+                                                         {"bin_width", "0.25"}});
+  TransientRender r = renderTransient(*scene, dir, "beams");
+  const double scale = brightest(r.steady);
+  ASSERT_GT(scale, 0.0);
+  double inWindow = 0.0, total = 0.0;
+  for (int y = 0; y < r.h; ++y)
+    for (int x = 0; x < r.w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = double(r.before.pixel(x, y)[c]) + r.after.pixel(x, y)[c];
+        for (int b = 0; b < r.bins; ++b) sum += r.v(x, y, b, c);
+        EXPECT_NEAR(sum, r.steady.pixel(x, y)[c], 1e-5 * scale + 1e-7) << "pixel " << x << "," << y;
+        inWindow += sum - r.before.pixel(x, y)[c] - r.after.pixel(x, y)[c];
+        total += r.steady.pixel(x, y)[c];
+      }
+  std::printf("transient_beams: %.1f%% of the steady image arrives inside the window\n", 100.0 * inWindow / total);
+  EXPECT_GT(inWindow, 0.5 * total) << "the window holds most of the light, so the sum means something";
 }

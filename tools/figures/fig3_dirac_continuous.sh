@@ -2,19 +2,23 @@
 # Seed figure 3: Dirac vs continuous emission on the coloured mirrors and the
 # glass-ball caustic (scenes/seed-coloured-mirrors-caustic), frames side by
 # side with the steady image: out/fig3/fig3_dirac_continuous.png
-# Until emitter pulses land, the continuous row is the running integral of
-# the Dirac volume over bins (exactly what continuous emission switched on at
-# OPL 0 gives); then it should be rendered with the continuous pulse and
-# compared with this (the test suite's job).
+# Two renders of the same scene and seed: the light's pulse a Dirac at OPL 0
+# (-D pulse=delta), then continuous emission switched on at OPL 0
+# (-D pulse=continuous: each frame is the running integral of the Dirac
+# sequence averaged over the bin, exact; tested in
+# tests/unit/test_seed_scenes.cpp). The continuous row's steady column is its
+# last frame.
 # Usage: tools/figures/fig3_dirac_continuous.sh [extra femto options]
 # Environment: FEMTO (build/bin/femto), OUT (out/fig3), SPP (256), RES (128, height 3/4).
 OUT_DEFAULT=out/fig3 SPP_DEFAULT=256 RES_DEFAULT=128
 . tools/figures/common.sh
-timed_render dirac scenes/seed-coloured-mirrors-caustic/scene.xml \
-  -D spp="$SPP" -D resolution="$RES" -D height=$((RES * 3 / 4)) "$@"
+for pulse in delta continuous; do
+  timed_render "$pulse" scenes/seed-coloured-mirrors-caustic/scene.xml \
+    -D spp="$SPP" -D resolution="$RES" -D height=$((RES * 3 / 4)) -D pulse="$pulse" "$@"
+done
 # Window: OPL 6 + 120 bins of 0.05. Columns: the floor lit directly (+1.6),
 # the caustic under the ball (+2.7), its reflections in the mirrors (+3.4 .. +4.2).
 /usr/bin/python3 tools/figures/frame_strip.py "$OUT/fig3_dirac_continuous.png" \
-  "Dirac=$OUT/dirac.npy@6" "continuous (running integral)=$OUT/dirac.npy@6#running" \
+  "Dirac=$OUT/delta.npy@6" "continuous=$OUT/continuous.npy@6#continuous" \
   --bin-width 0.05 --times 1.6 2.2 2.7 3.1 3.5 4.0 5.9 --average 3 --row-exposure --steady \
   --title "Seed fig. 3: coloured mirrors and a glass-ball caustic (IOR 1.5), transient_path, $SPP spp"

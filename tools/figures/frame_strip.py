@@ -6,7 +6,11 @@ figure so rows compare directly.
 Each row is `LABEL=VOLUME.npy@START` (START: the OPL at the start of the
 volume's bin 0, as given to the film); `LABEL=VOLUME.npy@START#running` shows
 the running integral over bins instead (the response to continuous emission
-switched on at OPL 0, when the volume is the response to a Dirac pulse). Columns are OPLs *relative to each
+switched on at OPL 0, when the volume is the response to a Dirac pulse);
+`LABEL=VOLUME.npy@START#continuous` marks a volume rendered with continuous
+emission (`pulse` = `continuous`): its steady column is its last bin, the
+level reached at the window's end (the steady image once all light has
+arrived), not the mean over bins. Columns are OPLs *relative to each
 row's START* (--times), so rows rendered with different windows (e.g. with and
 without observer time) line up by elapsed time since their window start. A
 frame is the mean of --average bins around the chosen time, to calm
@@ -26,10 +30,13 @@ import numpy as np  # noqa: E402
 
 
 def parse_row(text):
+    """LABEL=VOLUME.npy@START[#running|#continuous] -> label, path, start, mode ("", "running" or "continuous")."""
     label, rest = text.split("=", 1)
-    running = rest.endswith("#running")
-    path, start = rest.removesuffix("#running").rsplit("@", 1)
-    return label, path, float(start), running
+    rest, _, mode = rest.partition("#")
+    if mode not in ("", "running", "continuous"):
+        raise SystemExit(f"frame_strip: unknown row mode #{mode} in {text!r} (use #running or #continuous)")
+    path, start = rest.rsplit("@", 1)
+    return label, path, float(start), mode
 
 
 def to_srgb(linear):
@@ -46,18 +53,21 @@ def main():
     parser.add_argument("--average", type=int, default=3, help="bins averaged per frame")
     parser.add_argument("--steady", action="store_true", help="add the time integral as a last column")
     parser.add_argument("--percentile", type=float, default=99.0, help="exposure: this percentile of all frames -> 1")
-    parser.add_argument("--row-exposure", action="store_true", help="one exposure per row instead of per figure")
+    parser.add_argument("--row-exposure", action="store_true", help="one exposure per row (frames, and the steady column) instead of per figure")
     parser.add_argument("--title", default="")
     parser.add_argument("--note", default="", help="a line under the figure (e.g. which mesh)")
     args = parser.parse_args()
 
     rows = []
     for text in args.rows:
-        label, path, _start, running = parse_row(text)
+        label, path, _start, mode = parse_row(text)
         volume = np.load(path, mmap_mode="r")  # (height, width, bins, 3)
-        # The time integral over the window (per bin, so exposures compare).
-        steady = np.asarray(volume).mean(axis=2) if args.steady else None
-        if running:
+        # The time integral over the window (per bin, so exposures compare);
+        # under continuous emission, the level reached at the window's end.
+        steady = None
+        if args.steady:
+            steady = np.asarray(volume[:, :, -1]) if mode == "continuous" else np.asarray(volume).mean(axis=2)
+        if mode == "running":
             volume = np.cumsum(volume, axis=2, dtype=np.float32)
         frames = []
         for t in args.times:
@@ -68,7 +78,9 @@ def main():
         rows.append((label, frames, steady))
 
     # One exposure for every transient frame (or per row); the steady column
-    # (a sum over the window, far brighter per bin) gets its own, shared by its rows.
+    # (a sum over the window, far brighter per bin) gets its own, shared by
+    # its rows (or per row with --row-exposure: a continuous row's steady
+    # column is a level, not a mean over bins).
     def exposure(frames):
         values = np.concatenate([f.ravel() for f in frames])
         return 1.0 / max(np.percentile(values, args.percentile), 1e-12)
@@ -89,7 +101,8 @@ def main():
             if r == 0:
                 ax.set_title(f"+{args.times[c]:g}", fontsize=8)
         if args.steady:
-            axes[r][-1].imshow(to_srgb(steady * steady_scale))
+            row_steady_scale = exposure([steady]) if args.row_exposure else steady_scale
+            axes[r][-1].imshow(to_srgb(steady * row_steady_scale))
             if r == 0:
                 axes[r][-1].set_title("steady", fontsize=8)
         axes[r][0].set_ylabel(label, fontsize=7)
