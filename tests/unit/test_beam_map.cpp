@@ -264,6 +264,30 @@ TEST(BeamMap, ConcurrentQueriesAndRebuildsAgree) {
   EXPECT_EQ(serial, parallel);
 }
 
+TEST(BeamMap, UnsortedQueryFindsTheSameBeamsOnce) {
+  // queryUnsorted (the camera side's query: visit marks instead of a sort)
+  // reports exactly query()'s beams, each once, and keeps working when the
+  // marks are reused across queries and maps of other sizes.
+  PCG32 rng(12, 5);
+  std::vector<Beam> beams = randomBeams(rng, 2000);
+  BeamMap map(beams, 0.03f), small(randomBeams(rng, 50), 0.03f);
+  BeamMap::VisitMarks marks;
+  std::vector<uint32_t> sorted, unsorted;
+  size_t total = 0;
+  for (int i = 0; i < 300; ++i) {
+    CameraSegment seg = randomSegment(rng);
+    const BeamMap& m = i % 10 == 9 ? small : map;
+    m.query(seg, sorted);
+    m.queryUnsorted(seg, unsorted, marks);
+    std::vector<uint32_t> copy = unsorted;
+    std::sort(copy.begin(), copy.end());
+    EXPECT_TRUE(std::adjacent_find(copy.begin(), copy.end()) == copy.end()) << "a beam reported twice, query " << i;
+    EXPECT_EQ(copy, sorted) << "query " << i;
+    total += sorted.size();
+  }
+  EXPECT_GT(total, 300u);  // the queries do find beams
+}
+
 TEST(BeamMap, RejectsBadInput) {
   Beam ok = makeBeam({0, 0, 0}, {0, 0, 1}, 1.0f);
   EXPECT_THROW(BeamMap({ok}, -0.1f), Error);

@@ -7,9 +7,12 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include <femto/render/scene.h>
+#include <femto/math/pcg32.h>
 #include <transient_beams/photon_tracer.h>
+#include <transient_beams/ray_beam.h>
 
 #include "media_test_util.h"
 
@@ -38,9 +41,11 @@ std::shared_ptr<Scene> litMedium() {
 </scene>)"));
 }
 
+/// Every photon leaves beams (not only the integrator's default first 10000).
 BeamSettings photonSettings(int64_t photons) {
   BeamSettings s;
   s.photonCount = photons;
+  s.beamPhotonCount = 0;
   return s;
 }
 
@@ -153,6 +158,95 @@ TEST(TransientBeamsPhotons, GlassDelaysPhotonsByItsIndexAlongTheRefractedPath) {
     ++checked;
   }
   EXPECT_GT(checked, 2000);
+}
+
+TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
+  // beam_photon_count = M: photons 0..M-1 leave their beams, every photon its
+  // surface photons; each photon is the same as in a pass that stores all
+  // (its own random stream), so the beams are exactly those of an M-photon
+  // pass and the surface photons those of the full pass.
+  auto scene = loadSceneStrict(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.6"/><float name="albedo" value="0.9"/></medium>
+  <sensor type="perspective"/>
+  <emitter type="point"><point name="position" x="0" y="0" z="0"/><float name="intensity" value="1"/></emitter>
+  <shape type="sphere"><float name="radius" value="2"/><ref name="interior" id="m"/>
+    <bsdf type="diffuse"/></shape>
+</scene>)");
+  BeamSettings some = photonSettings(3000), all = photonSettings(3000), first = photonSettings(700);
+  some.beamPhotonCount = 700;
+  all.beamPhotonCount = first.beamPhotonCount = 0;
+  PhotonPass a = tracePhotonPass(*scene, some, 41, Infinity), b = tracePhotonPass(*scene, all, 41, Infinity),
+             c = tracePhotonPass(*scene, first, 41, Infinity);
+  EXPECT_EQ(a.photonCount, 3000u);
+  EXPECT_EQ(a.beamPhotonCount, 700u);
+  EXPECT_EQ(b.beamPhotonCount, 3000u);
+  ASSERT_EQ(a.beams.size(), c.beams.size());
+  EXPECT_LT(a.beams.size(), b.beams.size());
+  for (size_t i = 0; i < a.beams.size(); ++i)
+    ASSERT_TRUE(a.beams[i].origin == c.beams[i].origin && a.beams[i].direction == c.beams[i].direction &&
+                a.beams[i].power == c.beams[i].power && a.beams[i].opl == c.beams[i].opl)
+        << "beam " << i;
+  ASSERT_EQ(a.surfacePhotons.size(), b.surfacePhotons.size());
+  ASSERT_GT(a.surfacePhotons.size(), 1000u);
+  for (size_t i = 0; i < a.surfacePhotons.size(); ++i)
+    ASSERT_TRUE(a.surfacePhotons[i].p == b.surfacePhotons[i].p && a.surfacePhotons[i].power == b.surfacePhotons[i].power)
+        << "surface photon " << i;
+}
+
+TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
+  // Isotropic beams spread evenly over a cube: a segment of the cube's side
+  // meets about kTargetPairHits of them within the derived radius (the
+  // formula's assumptions hold here up to the beams' and segments' ends).
+  PCG32 rng(3, 3);
+  std::vector<Beam> beams;
+  auto direction = [&] {
+    float z = 1.0f - 2.0f * rng.nextFloat(), phi = 2.0f * Pi * rng.nextFloat(), s = std::sqrt(1.0f - z * z);
+    return Vec3f(s * std::cos(phi), s * std::sin(phi), z);
+  };
+  auto point = [&] { return Point3f(2.0f * rng.nextFloat(), 2.0f * rng.nextFloat(), 2.0f * rng.nextFloat()); };
+  while (beams.size() < 20000) {
+    // Chords of the cube [0, 2]^3 through a uniform point: evenly spread, isotropic.
+    Point3f p = point();
+    Vec3f d = direction();
+    float back = Infinity, ahead = Infinity;
+    for (int k = 0; k < 3; ++k) {
+      if (d[k] == 0.0f) continue;
+      float t0 = (0.0f - p[k]) / d[k], t1 = (2.0f - p[k]) / d[k];
+      ahead = std::min(ahead, std::max(t0, t1));
+      back = std::min(back, -std::min(t0, t1));
+    }
+    Beam b;
+    b.origin = p - d * back;
+    b.direction = d;
+    b.length = back + ahead;
+    b.power = Color3f(1.0f);
+    if (b.length > 0.0f) beams.push_back(b);
+  }
+  BeamSettings s = photonSettings(1000);
+  BeamSettings resolved = s.withBeamRadiusFrom(beams, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)));
+  ASSERT_GT(resolved.radius, 0.0f);
+  double hits = 0.0;
+  const int segments = 400;
+  for (int i = 0; i < segments; ++i) {
+    femto::beams::CameraSegment seg;
+    seg.ray = Ray(point(), direction());
+    seg.tMax = 2.0f;  // the cube's side, V^(1/3); may leave the cube (fewer beams there)
+    femto::beams::RayBeamHit hit;
+    for (const Beam& b : beams) hits += femto::beams::rayBeamIntersect(seg, b, resolved.radius, hit) ? 1.0 : 0.0;
+  }
+  const double perSegment = hits / segments;
+  std::printf("derived radius %g: %.1f pairs per segment (target %g)\n", resolved.radius, perSegment,
+              BeamSettings::kTargetPairHits);
+  // Segments leaving the cube lose up to half their length: between 0.4x and 1.2x.
+  EXPECT_GT(perSegment, 0.4 * BeamSettings::kTargetPairHits);
+  EXPECT_LT(perSegment, 1.2 * BeamSettings::kTargetPairHits);
+  // A given radius is kept; no beams fall back to the scene's scale.
+  s.radius = 0.125f;
+  EXPECT_EQ(s.withBeamRadiusFrom(beams, BoundingBox3f()).radius, 0.125f);
+  s.radius = 0.0f;
+  float fallback = s.withBeamRadiusFrom({}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f))).radius;
+  EXPECT_GT(fallback, 0.0f);
+  EXPECT_LT(fallback, 0.1f);
 }
 
 TEST(TransientBeamsPhotons, MapsDoNotDependOnTheThreadCount) {

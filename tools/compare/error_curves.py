@@ -78,13 +78,19 @@ def common_target(curves):
     return max(lows) if lows else None
 
 
-def common_time(curves):
-    """A time inside every curve's measured range (the latest such time), or None."""
+def common_time_range(curves):
+    """(earliest, latest) time inside every curve's measured range, or None."""
     ranges = [(_positive(p)[0][0], _positive(p)[-1][0]) for p in curves.values() if _positive(p)]
     if not ranges:
         return None
     start, end = max(r[0] for r in ranges), min(r[1] for r in ranges)
-    return end if start <= end else None
+    return (start, end) if start <= end else None
+
+
+def common_time(curves):
+    """A time inside every curve's measured range (the latest such time), or None."""
+    span = common_time_range(curves)
+    return span[1] if span else None
 
 
 def equal_time_ratios(curves, baseline, seconds):

@@ -1,12 +1,15 @@
 #!/bin/sh
 # Speed vs error on the fog Cornell box (scenes/cornell-box-fog) at 256 and
 # 1024 time bins: renders every integrator at increasing budgets against a
-# cached 2048-spp reference, writes the plots into docs/benchmarks/ and
+# cached 8192-spp reference, writes the plots into docs/benchmarks/ and
 # rewrites the "fog-box-speed-vs-error" section of docs/BENCHMARKS.md.
 #   tools/compare/fog_box_benchmark.sh [build-dir]        (default: build)
-# About 4 minutes on 2 cores the first time (the references), less after.
-# Overrides: FOG_RESOLUTION (64), FOG_SPP (1,2,4,8,16,32,64), FOG_REFERENCE_SPP (2048),
-#            FOG_PASSES (transient_beams budgets, 1,2,4,8,16).
+# About 15 minutes on 2 loaded cores the first time (the references), 5 after.
+# Overrides: FOG_RESOLUTION (64), FOG_SPP (4,...,256), FOG_REFERENCE_SPP (8192),
+#            FOG_PASSES (transient_beams budgets, 1,2,4,8).
+# transient_beams renders with its scene file's settings
+# (scenes/cornell-box-fog/integrator-transient_beams.xml: 32 camera samples
+# per pixel and 30000 photons per pass); both curves span about 0.3-3 s.
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-build}
@@ -15,14 +18,17 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 >/dev/null
 femto="$build/bin/femto"
 res=${FOG_RESOLUTION:-64}
-ref=${FOG_REFERENCE_SPP:-2048}
+# The measured error includes the reference's own (about 1/N of a 1-spp
+# render's for N spp): 8192 spp keeps it below a tenth of what the
+# integrators reach here.
+ref=${FOG_REFERENCE_SPP:-8192}
 
 # The integrators compared, one line each; transient_beams joins once built.
-set -- --integrator "transient_path:spp=${FOG_SPP:-1,2,4,8,16,32,64}"
+set -- --integrator "transient_path:spp=${FOG_SPP:-4,8,16,32,64,128,256}"
 # (Its budget is the scene's $passes.)
 if "$femto" plugins 2>/dev/null | grep -Eq '^integrator +transient_beams '; then
   if grep -q '<default name="passes"' scenes/cornell-box-fog/scene.xml; then
-    set -- "$@" --integrator "transient_beams:passes=${FOG_PASSES:-1,2,4,8,16}"
+    set -- "$@" --integrator "transient_beams:passes=${FOG_PASSES:-1,2,4,8}"
   else
     echo "note: transient_beams is built but scenes/cornell-box-fog has no <default name=\"passes\">; left out" >&2
   fi

@@ -50,6 +50,8 @@ class ErrorCurves(unittest.TestCase):
         self.assertAlmostEqual(ratios["mc"], 1.0)
         self.assertAlmostEqual(ratios["fast"], 0.5)
         self.assertIsNone(ec.common_time({"a": [(1.0, 1.0), (2.0, 0.5)], "b": [(3.0, 1.0), (4.0, 0.5)]}))
+        self.assertIsNone(ec.common_time_range({"a": [(1.0, 1.0), (2.0, 0.5)], "b": [(3.0, 1.0), (4.0, 0.5)]}))
+        self.assertEqual(ec.common_time_range({"a": [(1.0, 1.0), (5.0, 0.5)], "b": [(2.0, 1.0), (4.0, 0.5)]}), (2.0, 4.0))
 
     def test_convergence_slope(self):
         self.assertAlmostEqual(ec.convergence_slope(MC), -1.0)

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -317,8 +319,8 @@ struct SegmentSlabs {
 
 }  // namespace
 
-void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) const {
-  out.clear();
+template <typename Report>
+void BeamMap::traverse(const CameraSegment& segment, Report&& report) const {
   if (!impl_ || impl_->nodes.empty() || !(segment.tMax >= 0.0f)) return;
   // A NaN would make every slab test pass: a broken segment finds nothing.
   if (!isFinite(segment.ray.o) || !isFinite(segment.ray.d)) return;
@@ -343,14 +345,36 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
       continue;
     }
     for (uint32_t i = node.index; i < node.index + node.count; ++i)
-      if (node.count == 1 || s.hits(pieces[i].box.min, pieces[i].box.max))
-        // Neighbouring pieces of one beam often share a leaf or a subtree:
-        // dropping repeats here shrinks the sort below.
-        if (out.empty() || out.back() != pieces[i].beam) out.push_back(pieces[i].beam);
+      if (node.count == 1 || s.hits(pieces[i].box.min, pieces[i].box.max)) report(pieces[i].beam);
   }
+}
+
+void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) const {
+  out.clear();
+  traverse(segment, [&](uint32_t beam) {
+    // Neighbouring pieces of one beam often share a leaf or a subtree:
+    // dropping repeats here shrinks the sort below.
+    if (out.empty() || out.back() != beam) out.push_back(beam);
+  });
   // Pieces of one beam may all be hit: report each beam once, ascending.
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+void BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks) const {
+  out.clear();
+  if (marks.mark.size() != beams_.size() || marks.query == std::numeric_limits<uint32_t>::max()) {
+    marks.mark.assign(beams_.size(), 0);
+    marks.query = 0;
+  }
+  const uint32_t stamp = ++marks.query;
+  uint32_t* mark = marks.mark.data();
+  traverse(segment, [&](uint32_t beam) {
+    if (mark[beam] != stamp) {
+      mark[beam] = stamp;
+      out.push_back(beam);
+    }
+  });
 }
 
 }  // namespace femto::beams

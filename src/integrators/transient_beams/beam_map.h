@@ -50,6 +50,18 @@ class BeamMap {
   /// be infinite; a NaN or negative tMax finds nothing.
   void query(const CameraSegment& segment, std::vector<uint32_t>& out) const;
 
+  /// Per-thread scratch of the unsorted query below: one visit mark per beam.
+  struct VisitMarks {
+    std::vector<uint32_t> mark;  // the query that last reported beam i
+    uint32_t query = 0;
+  };
+  /// The same beams as query(), each once, but in traversal order (fixed by
+  /// the map and the segment, so deterministic), deduplicated with `marks`
+  /// instead of a sort: O(candidates) instead of O(candidates log candidates),
+  /// which matters when a segment meets hundreds of beams (the camera side's
+  /// hot loop). `marks` is sized on first use.
+  void queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks) const;
+
   const std::vector<Beam>& beams() const { return beams_; }
   float radius() const { return radius_; }
   /// Bytes held by the structure (beams and nodes), for memory reports.
@@ -63,6 +75,11 @@ class BeamMap {
   std::vector<Beam> beams_;
   float radius_ = 0.0f;
   Impl* impl_ = nullptr;
+
+  /// Calls report(beam index) for every piece whose box the segment crosses
+  /// (a beam once per piece hit), in traversal order.
+  template <typename Report>
+  void traverse(const CameraSegment& segment, Report&& report) const;
 };
 
 }  // namespace femto::beams

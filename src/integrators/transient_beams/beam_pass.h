@@ -5,6 +5,7 @@
 // transient_beams.cpp, hands one per pass to renderTransientPasses and frees
 // it when the pass ends). Immutable once built; sample() is thread-safe
 // (each thread gets its own CameraTracer scratch space).
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -35,12 +36,20 @@ class BeamPass final : public TransientIntegrator {
   const PassMaps& maps() const { return maps_; }
   std::string toString() const override;
 
+  /// The camera side's work so far, summed over threads (call between renders).
+  CameraStatistics cameraStatistics() const;
+  /// Wall seconds spent tracing the photons and building the two maps.
+  double traceSeconds() const { return traceSeconds_; }
+  double buildSeconds() const { return buildSeconds_; }
+
  private:
+  std::chrono::steady_clock::time_point buildStart_;  // first member: initialised before the maps are built
   BeamSettings settings_;
   BeamMap beams_;
   SurfacePhotonMap photons_;
   PassMaps maps_;
-  mutable tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch_;
+  double traceSeconds_ = 0.0, buildSeconds_ = 0.0;
+  mutable tbb::enumerable_thread_specific<CameraScratch> threads_;
 };
 
 }  // namespace femto::beams

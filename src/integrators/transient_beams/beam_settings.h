@@ -2,11 +2,14 @@
 // The parameters of the transient_beams integrator (see the table in
 // transient_beams.cpp), read and checked once; immutable afterwards. Errors
 // name the scene file and line of the offending parameter.
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include <femto/core/error.h>
 #include <femto/core/properties.h>
 #include <femto/math/bbox.h>
+#include <transient_beams/beam.h>
 
 namespace femto::beams {
 
@@ -18,9 +21,11 @@ enum class BeamStore {
 
 struct BeamSettings {
   int passes = 1;
-  int64_t photonCount = 100000;  // photons traced per pass
+  int64_t photonCount = 100000;  // photons traced per pass (all leave surface photons)
+  int64_t beamPhotonCount = 10000;  // how many of them (the first ones) leave beams; 0: all
   float radius = 0.0f;           // beam kernel radius of pass 0 (0: derived from the scene size)
   float surfaceRadius = 0.0f;    // surface photon kernel radius of pass 0 (0: derived)
+  float gatherFraction = 1.0f;   // probability that a camera segment in a medium gathers beams (weight 1/it)
   float alpha = 0.7f;            // progressive radius reduction, in (0, 1]
   int maxDepth = -1;             // longest camera + photon path in segments (-1: no limit)
   int rrDepth = 5;               // photon segments before Russian roulette may end a photon
@@ -32,9 +37,30 @@ struct BeamSettings {
   /// Read and validate every parameter (unknown ones are the loader's business).
   static BeamSettings parse(const Properties& props);
 
-  /// Fill in the radii not given, as fractions of the scene's bounding-box
-  /// diagonal; an error naming the integrator when the scene has no extent.
+  /// Fill in the surface radius if not given, as a fraction of the scene's
+  /// bounding-box diagonal; an error naming the integrator when the scene has
+  /// no extent. The beam radius, if not given, stays 0 until
+  /// withBeamRadiusFrom() sees the first pass's beams.
   BeamSettings resolved(const BoundingBox3f& sceneBounds) const;
+
+  /// If no beam radius is given, derive the first pass's from its beams
+  /// (total length L, bounding box volume V): a camera segment of length
+  /// V^(1/3) through beams spread evenly and isotropically over V passes
+  /// within r of about L V^(1/3) 2r (pi/4) / V of them (the mean |sin| of
+  /// isotropic directions is pi/4), so
+  ///   r = 2 kTargetPairHits V^(2/3) / (pi L)
+  /// gives each such segment about kTargetPairHits pairs: the estimate's
+  /// cost per camera segment stays bounded whatever the photon count, and
+  /// the radius shrinks as photons are added. Falls back to a fraction of
+  /// `sceneBounds`' diagonal when the beams span no volume. Deterministic:
+  /// the beams are the same for a given seed on any thread count.
+  BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const BoundingBox3f& sceneBounds) const;
+
+  /// Pairs per camera segment the derived beam radius aims at: enough that
+  /// a gather is worth its query (a camera segment's BVH traversal costs
+  /// about as much as tens of pair estimates), few enough that the kernel
+  /// stays narrow (docs/BENCHMARKS.md, "transient_beams cost").
+  static constexpr double kTargetPairHits = 25.0;
 
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)
@@ -44,6 +70,9 @@ struct BeamSettings {
   /// "Progressive Photon Mapping: A Probabilistic Approach", eq. 20).
   float beamRadius(int pass) const;
   float surfaceRadiusOf(int pass) const;
+
+  /// Photons per pass that leave beams (the estimate's N for beams).
+  int64_t beamPhotons() const { return beamPhotonCount > 0 ? std::min(beamPhotonCount, photonCount) : photonCount; }
 
   /// Does a path of `segments` segments (camera + photon) stay within max_depth?
   bool depthAllowed(int segments) const { return maxDepth < 0 || segments <= maxDepth; }

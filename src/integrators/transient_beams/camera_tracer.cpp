@@ -39,6 +39,7 @@ struct CameraTracer::Path {
 };
 
 void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) {
+  ++stats_.cameraRays;
   if (settings_.maxDepth == 0) return;
   const double horizon = recorder.horizon();
   Path s;
@@ -112,6 +113,13 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
 
 void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sampler& sampler,
                                RadianceRecorder& recorder) {
+  // Russian roulette on the whole gather (docs/photon-beams.md, "Gather
+  // fraction"): a segment gathers with probability q and its estimates weigh
+  // 1/q, so the expectation is unchanged. Only drawn when q < 1, so q = 1
+  // renders exactly as without it.
+  const float q = settings_.gatherFraction;
+  if (q < 1.0f && !(sampler.next1D() < q)) return;
+  const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
   const Medium& medium = *s.medium;
   CameraSegment segment;
   segment.ray = Ray(s.vertex, s.ray.d);  // from the exact vertex, where the path's OPL is s.opl
@@ -120,9 +128,11 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   // then show where light is, not when the camera sees it).
   segment.eta = (settings_.observerTime || !s.cameraSegment) ? medium.eta() : 0.0f;
   const std::vector<Beam>& beams = maps_.beams.beams();
-  maps_.beams.query(segment, scratch_);
+  maps_.beams.queryUnsorted(segment, scratch_, marks_);
+  ++stats_.segments;
+  stats_.candidates += scratch_.size();
   const double horizon = recorder.horizon();
-  const double invPhotons = 1.0 / double(maps_.photonCount);
+  const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
   const PhaseFunction& phase = medium.phase();
   for (uint32_t index : scratch_) {
     const Beam& beam = beams[index];
@@ -136,7 +146,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     float fp = phase.eval(-s.ray.d, -beam.direction);
     if (!(fp > 0.0f)) continue;
     Color3f value = s.throughput * medium.scatteringCoefficient(x) * fp * beam.power *
-                    float(double(hit.kernel) * invPhotons);
+                    float(double(hit.kernel) * invPhotons * gatherWeight);
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler);
     value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
@@ -144,6 +154,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
     recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,
                        scene.emitters()[beam.emitter]->pulse());
+    ++stats_.pairHits;
   }
 }
 
@@ -169,6 +180,8 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
                                         RadianceRecorder& recorder) {
   const float r = maps_.surfaceRadius;
   maps_.photons.query(si.p, r, scratch_);
+  ++stats_.surfaceQueries;
+  stats_.surfacePhotons += scratch_.size();
   if (scratch_.empty()) return;
   const BSDF& bsdf = *si.bsdf();
   // Only photons that arrived on the side the camera sees.

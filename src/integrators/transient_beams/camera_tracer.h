@@ -47,20 +47,47 @@ struct SurfaceInteraction;
 
 namespace femto::beams {
 
+/// Work counters of the camera side (per thread, summed per pass): what the
+/// estimates cost, for the statistics the integrator logs and the benchmarks
+/// read (docs/photon-beams.md, "Cost").
+struct CameraStatistics {
+  uint64_t cameraRays = 0;      // camera samples traced
+  uint64_t segments = 0;        // camera segments in media: beam map queries
+  uint64_t candidates = 0;      // beams the queries returned: rayBeamIntersect calls (ray x beam queries)
+  uint64_t pairHits = 0;        // pairs within the kernel radius that deposited an estimate
+  uint64_t surfaceQueries = 0;  // surface photon map queries
+  uint64_t surfacePhotons = 0;  // photons those found within the surface radius
+
+  CameraStatistics& operator+=(const CameraStatistics& o) {
+    cameraRays += o.cameraRays, segments += o.segments, candidates += o.candidates, pairHits += o.pairHits;
+    surfaceQueries += o.surfaceQueries, surfacePhotons += o.surfacePhotons;
+    return *this;
+  }
+};
+
+/// A thread's reusable state: query results, the beam map's visit marks and
+/// the work counters.
+struct CameraScratch {
+  std::vector<uint32_t> found;
+  BeamMap::VisitMarks marks;
+  CameraStatistics stats;
+};
+
 /// What one pass gives the camera side (all immutable, shared by threads).
 struct PassMaps {
   const BeamMap& beams;
   const SurfacePhotonMap& photons;
   float beamRadius = 0.0f;
   float surfaceRadius = 0.0f;
-  uint64_t photonCount = 1;  // photons traced in the pass (the estimates' N)
+  uint64_t photonCount = 1;      // photons traced in the pass (the surface estimate's N)
+  uint64_t beamPhotonCount = 1;  // those that left beams (the beam estimate's N)
 };
 
 class CameraTracer {
  public:
-  /// `scratch` holds query results between calls (one per thread).
-  CameraTracer(const BeamSettings& settings, const PassMaps& maps, std::vector<uint32_t>& scratch)
-      : settings_(settings), maps_(maps), scratch_(scratch) {}
+  /// `scratch`: one per thread, kept between calls.
+  CameraTracer(const BeamSettings& settings, const PassMaps& maps, CameraScratch& scratch)
+      : settings_(settings), maps_(maps), scratch_(scratch.found), marks_(scratch.marks), stats_(scratch.stats) {}
 
   /// Trace one camera sample along `ray` (OPL 0 at the sensor).
   void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder);
@@ -76,6 +103,8 @@ class CameraTracer {
   const BeamSettings& settings_;
   const PassMaps& maps_;
   std::vector<uint32_t>& scratch_;
+  BeamMap::VisitMarks& marks_;
+  CameraStatistics& stats_;
 };
 
 }  // namespace femto::beams

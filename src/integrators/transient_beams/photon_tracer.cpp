@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <femto/math/pcg32.h>
@@ -77,7 +78,8 @@ PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, dou
 
 PhotonTracer::~PhotonTracer() = default;
 
-void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons) {
+void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
+                         bool storeBeams) {
   if (emitterPower_.size() == 0 || !(emitterPower_.integral() > 0.0f)) return;
   Sampler& sampler = *sampler_;
   sampler.startPixel(seed, index);
@@ -104,7 +106,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     float eta = ph.medium ? ph.medium->eta() : ph.surfaceEta;
     if (ph.medium) {
       const Medium& medium = *ph.medium;
-      if (settings_.store == BeamStore::All || !ph.scattered) {
+      if (storeBeams && (settings_.store == BeamStore::All || !ph.scattered)) {
         // From the exact vertex, so the beam's OPL and geometry agree.
         float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(medium, ph.opl, horizon_);
         if (length > 0.0f && std::isfinite(length))
@@ -182,8 +184,10 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
   if (scene.emitters().size() > kMaxEmitters)
     throw Error(settings.location, str("transient_beams: the scene has ", scene.emitters().size(),
                                        " emitters; photons can name at most ", kMaxEmitters));
+  const auto start = std::chrono::steady_clock::now();
   PhotonPass pass;
   pass.photonCount = uint64_t(settings.photonCount);
+  pass.beamPhotonCount = uint64_t(settings.beamPhotons());
   const uint64_t blocks = (pass.photonCount + kPhotonsPerBlock - 1) / kPhotonsPerBlock;
   struct Block {
     std::vector<Beam> beams;
@@ -194,7 +198,8 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
     // One tracer per block: cheap to make, and no thread-local state to share.
     PhotonTracer tracer(scene, settings, horizon);
     const uint64_t end = std::min(pass.photonCount, (b + 1) * kPhotonsPerBlock);
-    for (uint64_t i = b * kPhotonsPerBlock; i < end; ++i) tracer.trace(seed, i, out[b].beams, out[b].photons);
+    for (uint64_t i = b * kPhotonsPerBlock; i < end; ++i)
+      tracer.trace(seed, i, out[b].beams, out[b].photons, i < pass.beamPhotonCount);
   });
   size_t beamCount = 0, photonCount = 0;
   for (const Block& b : out) beamCount += b.beams.size(), photonCount += b.photons.size();
@@ -205,6 +210,7 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
     pass.surfacePhotons.insert(pass.surfacePhotons.end(), b.photons.begin(), b.photons.end());
     b = Block();
   }
+  pass.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return pass;
 }
 

@@ -43,7 +43,9 @@ namespace femto::beams {
 struct PhotonPass {
   std::vector<Beam> beams;
   std::vector<SurfacePhoton> surfacePhotons;
-  uint64_t photonCount = 0;
+  uint64_t photonCount = 0;      // photons traced: the surface photons' N
+  uint64_t beamPhotonCount = 0;  // the first ones, which left the beams: the beams' N
+  double traceSeconds = 0.0;  // wall time tracePhotonPass took (statistics)
 };
 
 /// Per-thread photon tracer (mutable state: its random stream).
@@ -53,9 +55,10 @@ class PhotonTracer {
   PhotonTracer(const Scene& scene, const BeamSettings& settings, double horizon);
   ~PhotonTracer();
 
-  /// Trace photon `index` of the pass seeded `seed`, appending its beams and
-  /// surface photons.
-  void trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons);
+  /// Trace photon `index` of the pass seeded `seed`, appending its beams
+  /// (unless `storeBeams` is false) and surface photons.
+  void trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
+             bool storeBeams = true);
 
  private:
   /// Russian roulette past rr_depth segments; false ends the photon.

@@ -20,9 +20,13 @@
 // | name           | type    | default        | meaning                                                   | unit   |
 // |----------------|---------|----------------|-----------------------------------------------------------|--------|
 // | passes         | integer | 1              | progressive passes averaged into the film                 | -      |
-// | photon_count   | integer | 100000         | photons traced per pass                                   | -      |
-// | radius         | float   | 0.005 diagonal | beam kernel radius of the first pass                      | scene  |
-// | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass            | scene  |
+// | photon_count   | integer | 100000         | photons traced per pass (all leave surface photons)       | -      |
+// | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all          | -      |
+// | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
+// |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
+// | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: from   | scene  |
+// |                |         |                | pass 0's beams, ~25 pairs per segment (beam_settings.h)   |        |
+// | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
 // | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
 // | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
@@ -30,7 +34,12 @@
 // | store          | string  | "all"          | beams stored: "all" orders, or "single" scattering only   | -      |
 // | observer_time  | boolean | true           | include the camera segment in the OPL                     | -      |
 // | hide_emitters  | boolean | false          | emitters seen directly appear black                       | -      |
-// ("diagonal": of the scene's bounding box.)
+// ("diagonal": of the scene's bounding box.) At the end of a render one log
+// line gives the work done (beams, camera segments, ray x beam tests and pair
+// hits, and per second) and the time of each phase; the benchmarks read it.
+#include <algorithm>
+#include <string>
+
 #include <tbb/task_arena.h>
 
 #include <femto/core/log.h>
@@ -46,6 +55,43 @@ namespace femto {
 namespace {
 /// Mixed into a pass's seed for its photons, so they draw from other streams than its pixels.
 constexpr uint64_t kPhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
+
+/// Work and time summed over the passes of one render: the statistics line
+/// logged at the end ("transient_beams: ..."), which the benchmarks read
+/// (ray x beam queries per second, time against beam count).
+struct PassTotals {
+  int passes = 0;
+  uint64_t beams = 0, surfacePhotons = 0, photons = 0;
+  double traceSeconds = 0.0, buildSeconds = 0.0;
+  beams::CameraStatistics camera;
+
+  void add(const beams::BeamPass& pass) {
+    ++passes;
+    beams += pass.beamMap().beams().size();
+    surfacePhotons += pass.photonMap().size();
+    photons += pass.maps().photonCount;
+    traceSeconds += pass.traceSeconds();
+    buildSeconds += pass.buildSeconds();
+    camera += pass.cameraStatistics();
+  }
+
+  /// `seconds`: the whole render; the camera passes took what tracing and
+  /// building did not. Rates are per wall second of the camera passes (all
+  /// threads together).
+  std::string summary(double seconds) const {
+    const double cameraSeconds = std::max(seconds - traceSeconds - buildSeconds, 1e-9);
+    const double rays = double(std::max<uint64_t>(camera.cameraRays, 1));
+    const double segments = double(std::max<uint64_t>(camera.segments, 1));
+    return str("transient_beams: ", passes, " passes, ", photons, " photons, ", beams, " beams, ", surfacePhotons,
+               " surface photons; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
+               cameraSeconds, " s; ", camera.cameraRays, " camera rays, ", camera.segments, " beam queries (",
+               double(camera.candidates) / segments, " candidates and ", double(camera.pairHits) / segments,
+               " pair hits each), ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
+               double(camera.candidates) / cameraSeconds, " ray x beam tests/s, ",
+               double(camera.pairHits) / cameraSeconds, " pair hits/s, ", double(camera.surfacePhotons) / rays,
+               " surface photons per camera ray");
+  }
+};
 }  // namespace
 
 class TransientBeamsIntegrator final : public TransientIntegrator {
@@ -60,19 +106,40 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
   }
 
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
-    const beams::BeamSettings settings = settings_.resolved(scene.bbox());
-    return renderTransientPasses(scene, options, settings.passes, [&](int pass, double horizon) {
+    // The beam radius, unless given, is derived from pass 0's beams and then
+    // shrinks per pass like a given one (beam_settings.h).
+    beams::BeamSettings settings = settings_.resolved(scene.bbox());
+    PassTotals totals;
+    // The pass just rendered: its counters are read before the next pass is
+    // built (and its maps freed then, so memory stays that of one pass).
+    std::shared_ptr<const beams::BeamPass> previous;
+    auto collect = [&] {
+      if (previous) totals.add(*previous);
+      previous.reset();
+    };
+    RenderStats stats = renderTransientPasses(scene, options, settings.passes, [&](int pass, double horizon) {
+      collect();
       const uint64_t seed = mixSeed(passSeed(options.seed, pass), kPhotonSeedSalt);
-      std::shared_ptr<const beams::BeamPass> result;
-      auto trace = [&] { result = std::make_shared<const beams::BeamPass>(scene, settings, pass, seed, horizon); };
+      auto trace = [&] {
+        beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
+        if (pass == 0) settings = settings.withBeamRadiusFrom(traced.beams, scene.bbox());
+        previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
+      };
       // Photons are traced with the thread count the user asked for.
       if (options.threads > 0)
         tbb::task_arena(options.threads).execute(trace);
       else
         trace();
-      if (pass == 0) logInfo("transient_beams: pass 0: ", result->toString());
-      return std::static_pointer_cast<const TransientIntegrator>(result);
+      if (pass == 0) logInfo("transient_beams: pass 0: ", previous->toString());
+      return std::static_pointer_cast<const TransientIntegrator>(previous);
     });
+    collect();
+    // The render time covers the photon passes too (tracing and map
+    // building happen outside the render loop's clock), so that equal-time
+    // comparisons with other integrators are fair (docs/compare.md).
+    stats.seconds += totals.traceSeconds + totals.buildSeconds;
+    logInfo(totals.summary(stats.seconds));
+    return stats;
   }
 
   std::string toString() const override {
