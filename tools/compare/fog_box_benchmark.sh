@@ -45,6 +45,12 @@ trap 'rm -f "$section"' EXIT
   echo "transient volume against a ${ref}-spp \`transient_path\` reference with another seed, against"
   echo "the render time femto reports; ${res}x${res} pixels, the window OPL 3 to 13.24. The dotted"
   echo "line has slope −1, the Monte Carlo rate. Times depend on the machine's load (in the captions)."
+  echo "\`transient_path\` is budgeted by samples per pixel, \`transient_beams\` by passes of its scene-file"
+  echo "settings (\`scenes/cornell-box-fog/integrator-transient_beams.xml\`: 32 camera samples per pixel,"
+  echo "30000 photons of which 3000 leave beams, a quarter of the camera segments gather beams)."
+  echo "The equal-time ratios are given at both ends of the common time range; each curve is one seed,"
+  echo "so single points scatter (a path tracer's rare bright paths). What limits each integrator:"
+  echo "[photon-beams.md](photon-beams.md#performance-on-the-fog-cornell-box)."
 } > "$section"
 for bins in 256 1024; do
   width=$(/usr/bin/python3 -c "print(10.24 / $bins)")  # keep the window OPL 3 .. 13.24
