@@ -18,9 +18,11 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 >/dev/null
 femto="$build/bin/femto"
 res=${FOG_RESOLUTION:-64}
-# The measured error includes the reference's own (about 1/N of a 1-spp
-# render's for N spp): 8192 spp keeps it below a tenth of what the
-# integrators reach here.
+# The measured error includes the reference's own. transient_path's error is
+# heavy-tailed here (point-light next-event estimation in fog), so even 8192
+# spp leaves about 1.5e-5 relMSE at 1024 bins, half of what transient_beams
+# reaches at 4-8 passes (docs/photon-beams.md, "Performance on the fog Cornell
+# box"): the equal-time ratios are lower bounds of beams' advantage.
 ref=${FOG_REFERENCE_SPP:-8192}
 
 # The integrators compared, one line each; transient_beams joins once built.
