@@ -13,9 +13,7 @@ command="$build/bin/femto_bench_beams"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 table=$($command)
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
-commit=$(git rev-parse --short HEAD)
-dirty=$(git diff --quiet HEAD -- src tools 2>/dev/null || echo " (with uncommitted changes)")
-model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
+. "$root/tools/bench/provenance.sh"
 {
   echo "# Beam map"
   echo

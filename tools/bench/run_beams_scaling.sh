@@ -36,9 +36,7 @@ for n in $photons; do
   done
 done
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
-commit=$(git rev-parse --short HEAD)
-dirty=$(git diff --quiet HEAD -- src tools 2>/dev/null || echo " (with uncommitted changes)")
-model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
+. "$root/tools/bench/provenance.sh"
 {
   echo "## transient_beams cost: time and ray x beam queries against the number of beams"
   echo

@@ -10,9 +10,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target femto_bench_rays >/dev/null
 command="$build/bin/femto_bench_rays --runs 5"
 table=$($command)
-commit=$(git rev-parse --short HEAD)
-dirty=$(git diff --quiet HEAD -- src tools 2>/dev/null || echo " (with uncommitted changes)")
-model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
+. "$root/tools/bench/provenance.sh"
 cpus=$(nproc)
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 out=docs/BENCHMARKS.md

@@ -66,9 +66,7 @@ while [ "$i" -lt "$runs" ]; do
 done
 load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 
-commit=$(git rev-parse --short HEAD)
-dirty=$(git diff --quiet HEAD -- src tools scenes 2>/dev/null || echo " (with uncommitted changes)")
-model=$(lscpu | sed -n 's/^Model name: *//p' | head -n 1)
+. "$root/tools/bench/provenance.sh"
 cpus=$(nproc)
 n_steady=$(median "$work/path" 3)
 ratio_of_medians=$(awk -v a="$(median "$work/transient_path" 1)" -v b="$(median "$work/path" 1)" 'BEGIN { printf "%.3f", a / b }')
