@@ -25,15 +25,9 @@
 
 namespace femto {
 
-class DielectricBSDF final : public BSDF {
+class DielectricBSDF final : public SpecularDielectricBSDF {
  public:
-  explicit DielectricBSDF(const Properties& props)
-      : iors_(IORPair::read(props, *lookupIOR("bk7"))),
-        eta_(iors_.eta()),
-        reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
-        transmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {}
-
-  uint32_t flags() const override { return BSDFFlags::DeltaReflection | BSDFFlags::DeltaTransmission; }
+  explicit DielectricBSDF(const Properties& props) : SpecularDielectricBSDF(props) {}
 
   Color3f sample(const SurfaceInteraction& si, float u1, const Point2f&, BSDFSample& bs,
                  TransportMode mode) const override {
@@ -56,19 +50,8 @@ class DielectricBSDF final : public BSDF {
     return weight;
   }
 
-  // Both components are delta: nothing to evaluate for a given pair of directions.
-  Color3f eval(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return Color3f(0.0f); }
-  float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
+  std::string toString() const override { return describe("DielectricBSDF"); }
 
-  std::string toString() const override {
-    return str("DielectricBSDF[", iors_.toString(), ", specular_reflectance=",
-               reflectance_->toString(), ", specular_transmittance=", transmittance_->toString(), "]");
-  }
-
- private:
-  IORPair iors_;
-  float eta_;
-  std::shared_ptr<Texture> reflectance_, transmittance_;
 };
 
 }  // namespace femto

@@ -21,15 +21,9 @@
 
 namespace femto {
 
-class ThinDielectricBSDF final : public BSDF {
+class ThinDielectricBSDF final : public SpecularDielectricBSDF {
  public:
-  explicit ThinDielectricBSDF(const Properties& props)
-      : iors_(IORPair::read(props, *lookupIOR("bk7"))),
-        eta_(iors_.eta()),
-        reflectance_(textureOrColor(props, "specular_reflectance", Color3f(1.0f))),
-        transmittance_(textureOrColor(props, "specular_transmittance", Color3f(1.0f))) {}
-
-  uint32_t flags() const override { return BSDFFlags::DeltaReflection | BSDFFlags::DeltaTransmission; }
+  explicit ThinDielectricBSDF(const Properties& props) : SpecularDielectricBSDF(props) {}
 
   Color3f sample(const SurfaceInteraction& si, float u1, const Point2f&, BSDFSample& bs,
                  TransportMode) const override {
@@ -46,13 +40,7 @@ class ThinDielectricBSDF final : public BSDF {
     return transmittance_->eval(si);
   }
 
-  Color3f eval(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return Color3f(0.0f); }
-  float pdf(const SurfaceInteraction&, const Vec3f&, TransportMode) const override { return 0.0f; }
-
-  std::string toString() const override {
-    return str("ThinDielectricBSDF[", iors_.toString(), ", specular_reflectance=",
-               reflectance_->toString(), ", specular_transmittance=", transmittance_->toString(), "]");
-  }
+  std::string toString() const override { return describe("ThinDielectricBSDF"); }
 
  private:
   /// Reflectance of the pane, internal reflections included (see the header comment).
@@ -62,10 +50,6 @@ class ThinDielectricBSDF final : public BSDF {
     const float t = 1.0f - r;
     return r + t * t * r / (1.0f - r * r);
   }
-
-  IORPair iors_;
-  float eta_;
-  std::shared_ptr<Texture> reflectance_, transmittance_;
 };
 
 }  // namespace femto
