@@ -1,9 +1,11 @@
 """Running femto from the speed-vs-error harness: renders at a budget, the
 cached reference render, and `femto compare --json -`."""
+import collections
 import hashlib
 import json
 import os
 import re
+import resource
 import shutil
 import subprocess
 import time
@@ -15,13 +17,22 @@ class RunError(RuntimeError):
     """femto failed: the command and what it printed."""
 
 
+def _cpu_of_children():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def _run(cmd):
-    start = time.monotonic()
+    """Run `cmd`; returns (stdout, wall seconds, CPU seconds). The CPU time is
+    user + system of the process and its threads (the growth of this
+    process's reaped-children usage: one child runs at a time): unlike wall
+    time it barely changes when other processes share the cores."""
+    cpu0, start = _cpu_of_children(), time.monotonic()
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    wall = time.monotonic() - start
+    wall, cpu = time.monotonic() - start, _cpu_of_children() - cpu0
     if proc.returncode != 0:
         raise RunError(f"`{' '.join(cmd)}` exited {proc.returncode}:\n{proc.stdout}{proc.stderr}")
-    return proc.stdout, wall
+    return proc.stdout, wall, cpu
 
 
 def result_file(output):
@@ -31,27 +42,33 @@ def result_file(output):
     return stem + ".npy" if os.path.exists(stem + ".npy") else output
 
 
+# A render's times and the file to compare. seconds: the render as femto
+# reports it (RenderStats::seconds: no scene loading or output writing);
+# wall_seconds and cpu_seconds (user + system): the whole femto process.
+RenderResult = collections.namedtuple("RenderResult", "seconds wall_seconds cpu_seconds file")
+
+
 def render(femto, scene, output, defines, seed, threads):
-    """Render; returns (render seconds as femto reports them, wall seconds of
-    the whole process, file to compare). The EXR frames are deleted: the
-    harness compares the volume, and they would fill the disk."""
+    """Render; returns a RenderResult. The EXR frames are deleted: the
+    harness compares the volume, and they would fill the disk (the fog
+    benchmark passes -D frames=false, so that writing them is not timed)."""
     cmd = [femto, "render", scene, "-o", output, "--seed", str(seed), "--no-progress"]
     if threads:
         cmd += ["-t", str(threads)]
     for name, value in defines:
         cmd += ["-D", f"{name}={value}"]
-    out, wall = _run(cmd)
+    out, wall, cpu = _run(cmd)
     m = SUMMARY.search(out)
     if not m:
         raise RunError(f"`{' '.join(cmd)}` printed no 'rendered ... in N s' line:\n{out}")
     stem, _ = os.path.splitext(output)
     shutil.rmtree(stem + "_frames", ignore_errors=True)
-    return float(m.group(2)), wall, result_file(output)
+    return RenderResult(float(m.group(2)), wall, cpu, result_file(output))
 
 
 def compare(femto, reference, test):
     """`femto compare REF TEST --json -` as a dict (fields: docs/compare.md)."""
-    out, _ = _run([femto, "compare", reference, test, "--json", "-"])
+    out, _, _ = _run([femto, "compare", reference, test, "--json", "-"])
     return json.loads(out)
 
 
@@ -81,9 +98,11 @@ def cached_reference(femto, scene, defines, integrator, param, budget, seed, thr
             return path
     os.makedirs(folder, exist_ok=True)
     log(f"reference: rendering {integrator} {param}={budget} (seed {seed}) into {folder} ...")
-    seconds, _, path = render(femto, scene, os.path.join(folder, "reference.exr"),
-                              list(defines) + [("integrator", integrator), (param, str(budget))], seed, threads)
-    meta = dict(spec, scene_file=os.path.abspath(scene), file=os.path.basename(path), seconds=seconds)
+    r = render(femto, scene, os.path.join(folder, "reference.exr"),
+               list(defines) + [("integrator", integrator), (param, str(budget))], seed, threads)
+    path, seconds = r.file, r.seconds
+    meta = dict(spec, scene_file=os.path.abspath(scene), file=os.path.basename(path), seconds=seconds,
+                cpu_seconds=round(r.cpu_seconds, 3))
     with open(meta_path, "w") as f:
         json.dump(meta, f, indent=2)
     log(f"reference: done in {seconds:.1f} s")
