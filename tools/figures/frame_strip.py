@@ -55,7 +55,10 @@ def main():
     parser.add_argument("--percentile", type=float, default=99.0, help="exposure: this percentile of all frames -> 1")
     parser.add_argument("--row-exposure", action="store_true", help="one exposure per row (frames, and the steady column) instead of per figure")
     parser.add_argument("--title", default="")
-    parser.add_argument("--note", default="", help="a line under the figure (e.g. which mesh)")
+    parser.add_argument("--note", default="", help="text under the figure (e.g. which mesh); may have several lines")
+    parser.add_argument("--dpi", type=int, default=110, help="pixels per inch of the PNG (a frame is 1.8 in wide)")
+    parser.add_argument("--palette", action="store_true",
+                        help="store the PNG with a 256-colour palette: about 2.5 times smaller, for committed figures")
     args = parser.parse_args()
 
     rows = []
@@ -92,7 +95,10 @@ def main():
         steady_scale = 1.0 / max(np.percentile(steady_values, args.percentile), 1e-12)
 
     columns = len(args.times) + (1 if args.steady else 0)
-    fig, axes = plt.subplots(len(rows), columns, figsize=(1.8 * columns, 1.9 * len(rows) + 0.4), squeeze=False)
+    # A note may have several lines: each gets its own strip of the figure's height.
+    note_height = 0.05 + 0.13 * (args.note.count("\n") + 1) if args.note else 0.0
+    height = 1.9 * len(rows) + 0.4 + note_height
+    fig, axes = plt.subplots(len(rows), columns, figsize=(1.8 * columns, height), squeeze=False)
     for r, (label, frames, steady) in enumerate(rows):
         scale = exposure(frames) if args.row_exposure else figure_scale
         for c, frame in enumerate(frames):
@@ -113,8 +119,12 @@ def main():
     fig.suptitle(title, fontsize=9)
     if args.note:
         fig.text(0.5, 0.005, args.note, ha="center", fontsize=7)
-    fig.tight_layout()
-    fig.savefig(args.output, dpi=110)
+    fig.tight_layout(rect=(0, note_height / height, 1, 1))
+    fig.savefig(args.output, dpi=args.dpi)
+    if args.palette:
+        from PIL import Image  # Debian python3-pil, which matplotlib depends on
+
+        Image.open(args.output).convert("RGB").quantize(256).save(args.output, optimize=True)
     print(f"wrote {args.output}")
 
 

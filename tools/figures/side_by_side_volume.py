@@ -1,0 +1,47 @@
+#!/usr/bin/python3
+"""Put transient volumes side by side in one volume, so that `femto frames`
+makes one sequence (one exposure, one GIF) of all of them.
+
+    /usr/bin/python3 tools/figures/side_by_side_volume.py out/fig1/side.npy \
+        out/fig1/path.npy out/fig1/beams.npy out/fig1/reference.npy --merge 4
+
+Every volume (height, width, bins, 3) must have the same height and bins.
+--merge K averages each run of K bins into one (bins must divide by K): fewer
+frames for a small GIF, and each frame the mean over its K bins, as
+frame_strip.py's --average calms single-bin noise. --gutter G puts G black
+columns between the volumes.
+"""
+import argparse
+
+import numpy as np
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("output", help=".npy to write")
+    parser.add_argument("volumes", nargs="+", help=".npy volumes, left to right")
+    parser.add_argument("--merge", type=int, default=1, help="average runs of K bins")
+    parser.add_argument("--gutter", type=int, default=2, help="black columns between volumes")
+    args = parser.parse_args()
+
+    parts = []
+    for path in args.volumes:
+        volume = np.load(path, mmap_mode="r")
+        height, width, bins, channels = volume.shape
+        if bins % args.merge:
+            raise SystemExit(f"side_by_side_volume: {path} has {bins} bins, not a multiple of --merge {args.merge}")
+        merged = np.asarray(volume, dtype=np.float32).reshape(height, width, bins // args.merge, args.merge, channels)
+        parts.append(merged.mean(axis=3))
+    shapes = {(p.shape[0], p.shape[2]) for p in parts}
+    if len(shapes) != 1:
+        raise SystemExit(f"side_by_side_volume: the volumes differ in height or bins: {sorted(shapes)}")
+    gutter = np.zeros((parts[0].shape[0], args.gutter) + parts[0].shape[2:], dtype=np.float32)
+    row = [parts[0]]
+    for part in parts[1:]:
+        row += [gutter, part]
+    np.save(args.output, np.concatenate(row, axis=1))
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
