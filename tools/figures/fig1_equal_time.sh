@@ -9,12 +9,15 @@
 # transient_beams renders PASSES passes; transient_path then renders the spp
 # that take the same render time (a pilot at SPP spp, then at most two
 # corrections: tools/figures/equal_time.py). The reference is the mean of
-# REF_RUNS transient_path renders of REF_SPP spp with other seeds, cached.
+# REF_RUNS transient_path renders of REF_SPP spp with other seeds, cached
+# under build/compare-cache (tools/compare/reference_volume.py: its spread
+# also estimates the reference's own error, which the caption gives and
+# subtracts). The first run renders it: ~40 min on 2 busy cores.
 # Usage (from the repository root, after building femto and its plugins):
 #   tools/figures/fig1_equal_time.sh [-D NAME=VALUE ...]   (scene overrides for every render)
 # Environment: FEMTO (build/bin/femto), OUT (out/fig1), SPP (pilot spp, 16),
 # RES (128), PASSES (16), BINS (512, a multiple of 64, over the scene's window OPL 3 to 13.24),
-# REF_SPP (4096), REF_RUNS (4), THREADS (0: all cores).
+# REF_SPP (2048), REF_RUNS (8), THREADS (0: all cores).
 OUT_DEFAULT=out/fig1 SPP_DEFAULT=16 RES_DEFAULT=128
 . tools/figures/common.sh
 . tools/bench/provenance.sh
@@ -25,8 +28,8 @@ if [ $((BINS % 64)) -ne 0 ]; then
   exit 1
 fi
 BIN_WIDTH=$(awk "BEGIN { print 10.24 / $BINS }")
-REF_SPP=${REF_SPP:-4096}
-REF_RUNS=${REF_RUNS:-4}
+REF_SPP=${REF_SPP:-2048}
+REF_RUNS=${REF_RUNS:-8}
 THREADS=${THREADS:-0}
 SCENE=scenes/cornell-box-fog/scene.xml
 
@@ -36,31 +39,23 @@ load_before=$(cut -d' ' -f1-3 /proc/loadavg)
   -D resolution="$RES" -D bins="$BINS" -D bin_width="$BIN_WIDTH" -D frames=false "$@"
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 
-# field EXPR: a value of equal_time.json (d), formatted by the expression.
+# field EXPR: a value of equal_time.json (d); captions are written there.
 field() { /usr/bin/python3 -c "import json; d = json.load(open('$OUT/equal_time.json')); print($1)"; }
-label() {  # label RUN NAME BUDGET
-  field "f\"{'$2'}, {d['$1']['budget']} $3\\n{d['$1']['seconds']:.1f} s, relMSE {d['$1']['relmse']:.2e}\""
-}
-path_label=$(label path "path tracing" spp)
-beams_label=$(label beams "photon beams" passes)
-ref_label=$(field "f\"reference: path tracing\\n{d['reference']['runs']} x {d['reference']['spp']} spp, relMSE ~{d['reference']['relmse']:.1e}\"")
-note=$(field "f\"equal render time: path {d['path']['seconds']:.1f} s, beams {d['beams']['seconds']:.1f} s (ratio {d['time_ratio']:.3f}); \
-relMSE vs reference, volume (time integral): path {d['path']['relmse']:.2e} ({d['path']['integral_relmse']:.2e}), \
-beams {d['beams']['relmse']:.2e} ({d['beams']['integral_relmse']:.2e})\"")
+reference=$(field "d['reference']['file']")
 threads=$THREADS
 [ "$threads" -gt 0 ] || threads=$(nproc)
 machine="$model, $threads threads; commit $commit$dirty; load average $load_before before, $load_after after"
-echo "$note"
 echo "$machine"
 
 # Columns: the direct wavefront crossing the fog (+1.1 ... +1.8), the walls
 # lit (+2.3), the back wall and the light's reflection off it (+3.0), then
 # indirect light only (+4.0); the window starts at OPL 3.
 /usr/bin/python3 tools/figures/frame_strip.py "$OUT/fig1_equal_time.png" \
-  "$path_label=$OUT/path.npy@3" "$beams_label=$OUT/beams.npy@3" "$ref_label=$(field "d['reference']['file']")@3" \
+  "$(field "d['captions']['path']")=$OUT/path.npy@3" "$(field "d['captions']['beams']")=$OUT/beams.npy@3" \
+  "$(field "d['captions']['reference']")=$reference@3" \
   --bin-width "$BIN_WIDTH" --times 1.1 1.4 1.8 2.3 3.0 4.0 --average 3 --steady \
   --title "Seed fig. 1: fog Cornell box, ${RES}x$RES, $BINS bins of OPL $BIN_WIDTH, equal render time" \
-  --note "$note
+  --note "$(field "d['captions']['note']")
 $machine" --dpi 100 --palette
 
 # The GIF: path | beams | reference, each frame the mean of BINS/64 bins
@@ -68,7 +63,7 @@ $machine" --dpi 100 --palette
 # path tracer's noise makes every frame expensive to store).
 merge=$((BINS / 64))
 /usr/bin/python3 tools/figures/side_by_side_volume.py "$OUT/side_by_side.npy" \
-  "$OUT/path.npy" "$OUT/beams.npy" "$(field "d['reference']['file']")" --merge "$merge"
+  "$OUT/path.npy" "$OUT/beams.npy" "$reference" --merge "$merge"
 "$FEMTO" frames "$OUT/side_by_side.npy" -o "$OUT/side_by_side_frames" --bins 6:38 --gif --fps 8
 cp "$OUT/side_by_side_frames/sequence.gif" "$OUT/fig1_equal_time.gif"
 echo "wrote $OUT/fig1_equal_time.gif (left to right: path tracing, photon beams, reference)"

@@ -16,6 +16,27 @@ import argparse
 import numpy as np
 
 
+def merge_bins(volume, merge):
+    """Average each run of `merge` bins of a (height, width, bins, 3) volume."""
+    height, width, bins, channels = volume.shape
+    if bins % merge:
+        raise ValueError(f"{bins} bins are not a multiple of --merge {merge}")
+    return np.asarray(volume, dtype=np.float32).reshape(height, width, bins // merge, merge, channels).mean(axis=3)
+
+
+def side_by_side(volumes, merge=1, gutter=2):
+    """The volumes left to right, bins merged, `gutter` black columns between."""
+    parts = [merge_bins(v, merge) for v in volumes]
+    shapes = {(p.shape[0], p.shape[2], p.shape[3]) for p in parts}
+    if len(shapes) != 1:
+        raise ValueError(f"the volumes differ in height, bins or channels: {sorted(shapes)}")
+    black = np.zeros((parts[0].shape[0], gutter) + parts[0].shape[2:], dtype=np.float32)
+    row = [parts[0]]
+    for part in parts[1:]:
+        row += [black, part]
+    return np.concatenate(row, axis=1)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("output", help=".npy to write")
@@ -23,23 +44,11 @@ def main():
     parser.add_argument("--merge", type=int, default=1, help="average runs of K bins")
     parser.add_argument("--gutter", type=int, default=2, help="black columns between volumes")
     args = parser.parse_args()
-
-    parts = []
-    for path in args.volumes:
-        volume = np.load(path, mmap_mode="r")
-        height, width, bins, channels = volume.shape
-        if bins % args.merge:
-            raise SystemExit(f"side_by_side_volume: {path} has {bins} bins, not a multiple of --merge {args.merge}")
-        merged = np.asarray(volume, dtype=np.float32).reshape(height, width, bins // args.merge, args.merge, channels)
-        parts.append(merged.mean(axis=3))
-    shapes = {(p.shape[0], p.shape[2]) for p in parts}
-    if len(shapes) != 1:
-        raise SystemExit(f"side_by_side_volume: the volumes differ in height or bins: {sorted(shapes)}")
-    gutter = np.zeros((parts[0].shape[0], args.gutter) + parts[0].shape[2:], dtype=np.float32)
-    row = [parts[0]]
-    for part in parts[1:]:
-        row += [gutter, part]
-    np.save(args.output, np.concatenate(row, axis=1))
+    try:
+        row = side_by_side([np.load(p, mmap_mode="r") for p in args.volumes], args.merge, args.gutter)
+    except ValueError as e:
+        raise SystemExit(f"side_by_side_volume: {' '.join(args.volumes)}: {e}")
+    np.save(args.output, row)
     print(f"wrote {args.output}")
 
 
