@@ -67,6 +67,23 @@ TEST(LoaderExpand, CommandLineDefinesOverrideDefaults) {
   EXPECT_EQ(*p.root.children[0].attribute("type"), "x");
 }
 
+TEST(LoaderExpand, UnusedDefineWarnsOrFailsWhenStrict) {
+  LoadOptions options;
+  options.defines["spp"] = "4";
+  options.defines["sp"] = "8";           // a typo: nothing refers to $sp
+  options.defines["declared"] = "1";     // declared by <default> but never substituted
+  const std::string xml = "<scene><default name=\"spp\" value=\"16\"/><default name=\"declared\" value=\"0\"/>"
+                          "<integer name=\"n\" value=\"$spp\"/></scene>";
+  auto p = parse(xml, options);  // a warning only
+  EXPECT_EQ(p.expanded.unusedDefines, (std::vector<std::string>{"declared", "sp"}));
+  options.strict = true;
+  std::string message = loadertest::errorOf([&] { parse(xml, options); });
+  EXPECT_NE(message.find("-D declared=1 was not used: the scene never refers to $declared"), std::string::npos) << message;
+  options.defines.erase("sp");
+  options.defines.erase("declared");
+  EXPECT_NO_THROW(parse(xml, options));
+}
+
 TEST(LoaderExpand, UndefinedParameterIsAnErrorAtItsLine) {
   EXPECT_SCENE_ERROR(parse("<scene>\n\n  <integer name=\"a\" value=\"$nope\"/>\n</scene>"), "test.xml:3",
                      "undefined parameter \"$nope\"");

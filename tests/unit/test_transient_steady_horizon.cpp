@@ -42,6 +42,9 @@ Render renderFog(const std::string& name, std::map<std::string, std::string> def
                      {"bin_width", "0.0625"},
                      {"frames", "false"}};
   for (auto& [key, value] : defines) options.defines[key] = value;
+  // A steady film has no time axis: strict loading refuses -D it would ignore.
+  if (auto film = options.defines.find("film"); film != options.defines.end() && film->second == "hdrfilm")
+    for (const char* transientOnly : {"bins", "bin_width", "frames"}) options.defines.erase(transientOnly);
   auto scene = loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml", options);
   RenderOptions render;
   render.output = dir / "fog.exr";

@@ -46,7 +46,7 @@ class Expander {
     for (auto& [key, value] : node.attributes) {
       if (value.find('$') == std::string::npos) continue;
       try {
-        value = substituteParameters(value, params_);
+        value = substituteParameters(value, params_, &used_);
       } catch (const Error& e) {
         throw sceneError(node, e.what());
       }
@@ -82,11 +82,16 @@ class Expander {
 
   ExpandResult& result_;
   std::map<std::string, std::string> params_;
+
+ public:
+  /// Names any `$name` referred to, -D or <default>.
+  std::set<std::string> used_;
 };
 
 }  // namespace
 
-std::string substituteParameters(const std::string& text, const std::map<std::string, std::string>& params) {
+std::string substituteParameters(const std::string& text, const std::map<std::string, std::string>& params,
+                                 std::set<std::string>* used) {
   std::string out;
   for (size_t i = 0; i < text.size();) {
     if (text[i] != '$') {
@@ -102,6 +107,7 @@ std::string substituteParameters(const std::string& text, const std::map<std::st
       throw Error(str("undefined parameter \"$", name, "\" (declare it with <default name=\"", name,
                       "\" value=\"...\"/> or pass -D ", name, "=...)"));
     out += it->second;
+    if (used) used->insert(name);
     i = end;
   }
   return out;
@@ -125,6 +131,8 @@ ExpandResult expandDirectives(XmlNode& root, const fs::path& sceneDir, const std
   if (wrapper.children.size() != 1)
     throw Error("the scene's root element must be an object, not a directive such as <include> or <default>");
   root = std::move(wrapper.children.front());
+  for (const auto& [name, value] : defines)
+    if (!expander.used_.count(name)) result.unusedDefines.push_back(name);
   return result;
 }
 

@@ -2,7 +2,9 @@
 // Parse stage 2: expand <include>, <default>, $name, <path> and <alias>, so
 // later stages see one tree of objects and values only.
 #include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "file_resolver.h"
 #include "scene_error.h"
@@ -17,6 +19,9 @@ struct ExpandResult {
   std::map<std::string, std::string> aliases;
   /// Every file read (the main one and includes), for echoing lines.
   SourceRegistry sources;
+  /// -D names no `$name` of the expanded scene referred to: they changed
+  /// nothing (a misspelt name, or one only an unselected include uses).
+  std::vector<std::string> unusedDefines;
 };
 
 /// Expand the directives in `root` in document order:
@@ -33,6 +38,8 @@ ExpandResult expandDirectives(XmlNode& root, const std::filesystem::path& sceneD
                               const std::map<std::string, std::string>& defines);
 
 /// Replace every $name in `text` (names are [A-Za-z0-9_]+); throws for undefined names.
-std::string substituteParameters(const std::string& text, const std::map<std::string, std::string>& params);
+/// Each name substituted is added to `used` when given.
+std::string substituteParameters(const std::string& text, const std::map<std::string, std::string>& params,
+                                 std::set<std::string>* used = nullptr);
 
 }  // namespace femto::xml
