@@ -203,7 +203,8 @@ double relativeError(const std::vector<Mean>& means) {
 /// integrals (transient film, complete_steady) against a steady render.
 struct Comparison {
   std::string scene;
-  Defines common;                   // -D for all renders: size, window, ...
+  Defines common;                   // -D for all renders: size, ...
+  Defines window;                   // -D for the transient films only: bins, bin_width, ...
   Defines transientPath, beams;     // -D of each transient integrator's renders
   Defines steady;                   // -D of the reference (film=hdrfilm and its integrator)
   int runs = 6, blocks = 2;
@@ -216,7 +217,8 @@ void compareWithSteady(const Comparison& c) {
     for (const auto& [k, v] : own) d[k] = v;
     return d;
   };
-  Defines transient = {{"complete_steady", "true"}};
+  Defines transient = c.window;
+  transient["complete_steady"] = "true";
   Defines tp = defines(c.transientPath), tb = defines(c.beams), st = defines(c.steady);
   tp.merge(Defines(transient)), tb.merge(Defines(transient));
   tp["integrator"] = "transient_path", tb["integrator"] = "transient_beams";
@@ -242,7 +244,8 @@ TEST(TimeIntegralVsSteady, FogCornellBox) {
   // of the point light are left out (comparedPixels: infinite variance).
   Comparison c;
   c.scene = "cornell-box-fog";
-  c.common = {{"resolution", "16"}, {"bins", "8"}, {"bin_width", "1.28"}, {"frames", "false"}};
+  c.common = {{"resolution", "16"}};
+  c.window = {{"bins", "8"}, {"bin_width", "1.28"}, {"frames", "false"}};
   c.transientPath = {{"spp", "64"}};
   c.beams = {{"spp", "8"}, {"photon_count", "20000"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "64"}};
@@ -258,7 +261,8 @@ TEST(TimeIntegralVsSteady, SeedGlassMirrorBalls) {
   // (its default photon count and derived radii).
   Comparison c;
   c.scene = "seed-glass-mirror-balls";
-  c.common = {{"resolution", "16"}, {"bins", "8"}, {"bin_width", "1"}};
+  c.common = {{"resolution", "16"}};
+  c.window = {{"bins", "8"}, {"bin_width", "1"}};
   c.transientPath = {{"spp", "32"}};
   c.beams = {{"spp", "4"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "32"}};
@@ -273,8 +277,8 @@ TEST(TimeIntegralVsSteady, SeedColouredMirrorsCaustic) {
   // standard error that makes the comparison sharp (a few % per block).
   Comparison c;
   c.scene = "seed-coloured-mirrors-caustic";
-  c.common = {{"resolution", "16"}, {"height", "12"}, {"bins", "8"}, {"bin_width", "0.75"},
-              {"light_radius", "0.25"}};
+  c.common = {{"resolution", "16"}, {"height", "12"}, {"light_radius", "0.25"}};
+  c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "256"}};
   c.beams = {{"spp", "16"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "256"}};
@@ -299,7 +303,8 @@ TEST(TimeIntegralVsSteady, SeedGlassArmadillo) {
   }
   Comparison c;
   c.scene = "seed-glass-armadillo";
-  c.common = {{"resolution", "16"}, {"height", "12"}, {"bins", "8"}, {"bin_width", "0.75"}, {"mesh", mesh.string()}};
+  c.common = {{"resolution", "16"}, {"height", "12"}, {"mesh", mesh.string()}};
+  c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "128"}};
   c.beams = {{"spp", "8"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "128"}};
