@@ -169,3 +169,56 @@ TEST(TransientBeamsMedia, EmitterPulseOffsetShiftsEveryContribution) {
     EXPECT_EQ(rb.hits[i].second, ra.hits[i].second);
   }
 }
+
+namespace {
+
+/// The single-scattering scene of `model` with a phase function that delays
+/// every scattering by `delay` plus an exponential time of mean `lifetime`.
+std::shared_ptr<Scene> delayedScatteringScene(const SingleScattering& model, double delay, double lifetime) {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value=")", model.sigmaT, R"("/><float name="albedo" value=")",
+                             model.sigmaS / model.sigmaT, R"("/><phase type="isotropic"><float name="delay" value=")",
+                             delay, R"("/><float name="lifetime" value=")", lifetime, R"("/></phase></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x=")", model.light.x, R"(" y=")", model.light.y, R"(" z=")",
+                             model.light.z, R"("/><float name="intensity" value=")", model.intensity, R"("/></emitter>
+</scene>)"));
+}
+
+}  // namespace
+
+TEST(TransientBeamsMedia, PhaseDelayShiftsSingleScatteringByExactlyTheDelay) {
+  // Single scattering (max_depth 2) scatters once, toward the camera: a
+  // constant phase delay moves every ray x beam estimate by exactly that
+  // delay, and an exponential lifetime by a time whose mean is the lifetime
+  // (5 sigma; sigma = lifetime / sqrt(n)); the values do not change.
+  const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
+  SingleScattering model{d};
+  const double delay = 0.7, lifetime = 0.4;
+  auto plain = singleScatteringScene(model), delayed = delayedScatteringScene(model, delay, 0.0),
+       living = delayedScatteringScene(model, 0.0, lifetime);
+  beams::BeamSettings settings;
+  settings.photonCount = 20000;
+  settings.radius = settings.surfaceRadius = 0.05f;
+  settings.maxDepth = 2;
+  beams::BeamPass a(*plain, settings, 0, 5, Infinity), b(*delayed, settings, 0, 5, Infinity),
+      c(*living, settings, 0, 5, Infinity);
+  auto samplerA = seededSampler(4), samplerB = seededSampler(4), samplerC = seededSampler(4);
+  CollectingRecorder ra, rb, rc;
+  a.sample(*plain, Ray(Point3f(0.0f), d), *samplerA, ra);
+  b.sample(*delayed, Ray(Point3f(0.0f), d), *samplerB, rb);
+  c.sample(*living, Ray(Point3f(0.0f), d), *samplerC, rc);
+  ASSERT_GT(ra.hits.size(), 100u);
+  ASSERT_EQ(ra.hits.size(), rb.hits.size());
+  ASSERT_EQ(ra.hits.size(), rc.hits.size());
+  Mean shift;
+  for (size_t i = 0; i < ra.hits.size(); ++i) {
+    EXPECT_NEAR(rb.hits[i].first, ra.hits[i].first + delay, 1e-6 * delay);  // the delay is a float parameter
+    EXPECT_EQ(rb.hits[i].second, ra.hits[i].second);
+    EXPECT_EQ(rc.hits[i].second, ra.hits[i].second);
+    const double s = rc.hits[i].first - ra.hits[i].first;
+    EXPECT_GE(s, -1e-9);
+    shift.add(s);
+  }
+  EXPECT_NEAR(shift.mean(), lifetime, 5.0 * lifetime / std::sqrt(double(shift.count())));
+}

@@ -17,7 +17,7 @@
 
 #include "media_test_util.h"
 #include "render_test_util.h"
-#include "transient_film_test_util.h"
+#include "transient_agreement_util.h"
 
 using namespace femto;
 using namespace femto::test;
@@ -25,28 +25,6 @@ using namespace femto::test;
 namespace {
 
 const std::filesystem::path kFogBox = std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml";
-
-struct Rendered {
-  std::vector<float> volume;  // (h, w, bins, 3)
-  Bitmap steady;
-  int h = 0, w = 0, bins = 0;
-};
-
-Rendered render(const std::shared_ptr<Scene>& scene, const std::filesystem::path& out, uint64_t seed, int threads = 0) {
-  RenderOptions options;
-  options.output = out;
-  options.seed = seed;
-  options.progress = false;
-  options.threads = threads;
-  RenderStats stats = scene->integrator().render(*scene, options);
-  EXPECT_TRUE(stats.completed);
-  EXPECT_EQ(stats.invalidSamples, 0u);
-  Rendered r;
-  r.steady = readImage(out);
-  std::filesystem::path npy = std::filesystem::path(out).replace_extension(".npy");
-  if (std::filesystem::exists(npy)) r.volume = readVolume(npy, r.h, r.w, r.bins);
-  return r;
-}
 
 /// The shipped fog Cornell box, small. `extra` are further -D overrides,
 /// e.g. transient_beams' photon_count (integrator-transient_beams.xml), so
@@ -61,49 +39,6 @@ std::shared_ptr<Scene> fogBox(const std::string& integrator, int spp, int bins,
   for (const auto& [name, value] : extra) options.defines[name] = value;
   return loadScene(kFogBox, options);
 }
-
-/// Per time bin (and one more entry for the steady image), the image sum of
-/// the channel average, over `runs` renders with different seeds.
-std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs) {
-  auto dir = scratchDir(name);
-  std::vector<Mean> sums;
-  for (int run = 0; run < runs; ++run) {
-    Rendered r = render(scene, dir / "out.exr", uint64_t(100 + run));
-    sums.resize(size_t(r.bins) + 1);
-    std::vector<double> perBin(size_t(r.bins) + 1, 0.0);
-    for (size_t i = 0; i < r.volume.size(); ++i) perBin[(i / 3) % size_t(r.bins)] += r.volume[i] / 3.0;
-    for (int y = 0; y < r.steady.height; ++y)
-      for (int x = 0; x < r.steady.width; ++x)
-        for (int c = 0; c < 3; ++c) perBin.back() += r.steady.pixel(x, y)[c] / 3.0;
-    for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
-  }
-  return sums;
-}
-
-/// Two sets of independent runs estimate the same quantities: each pair of
-/// means within 5 standard errors of their difference (the runs' spread),
-/// plus `bias` times the value for what a density estimate's kernel may
-/// shift (0 between unbiased estimators).
-void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, const char* what, double bias = 0.0) {
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t k = 0; k < a.size(); ++k) {
-    double se = std::sqrt(a[k].standardError() * a[k].standardError() + b[k].standardError() * b[k].standardError());
-    std::printf("%s %s: %.5g +- %.2g vs %.5g +- %.2g\n", what,
-                k + 1 == a.size() ? "steady" : str("bin ", k).c_str(), a[k].mean(), a[k].standardError(), b[k].mean(),
-                b[k].standardError());
-    EXPECT_NEAR(a[k].mean(), b[k].mean(), 5.0 * se + bias * std::abs(b[k].mean()) + 1e-6)
-        << what << (k + 1 == a.size() ? " steady" : " bin ") << k;
-  }
-}
-
-/// transient_beams' kernels are consistent, not unbiased: near walls and
-/// edges part of a kernel falls outside the medium or off the surface, so the
-/// estimate is low there. With the default radii (the beam radius derived
-/// from the beams, at most 1 % of the scene's diagonal, and 1 % of it on
-/// surfaces) the band within a radius of an edge is a few percent of what the
-/// camera sees and loses at most half of its indirect light there: allow 2 %
-/// of the value on top of the noise.
-constexpr double kKernelBias = 0.02;
 
 }  // namespace
 

@@ -53,6 +53,15 @@ Distribution1D emitterPowerDistribution(const Scene& scene) {
   return Distribution1D(std::move(weights));
 }
 
+/// Emitters at infinity (directional, constant, envmap) have no flag of
+/// their own; their direction samples have an infinite distance
+/// (SceneSphere::directionSample), which marks them.
+bool isAtInfinity(const Emitter& emitter, const Point3f& ref) {
+  DirectionSample ds;
+  emitter.sampleDirection(ref, Point2f(0.5f), ds);
+  return ds.dist == Infinity;
+}
+
 /// The state of one photon.
 struct Photon {
   Ray ray;                   // ray.o may be offset off a surface; `vertex` is exact
@@ -65,6 +74,7 @@ struct Photon {
   uint16_t emitter = 0;      // index of the emitter that sent it
   bool scattered = false;    // scattered in a medium or off a non-specular surface
   bool indirect = false;     // scattered, or bounced off a specular surface
+  bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
 };
 
 }  // namespace
@@ -74,7 +84,9 @@ PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, dou
       settings_(settings),
       horizon_(horizon),
       emitterPower_(emitterPowerDistribution(scene)),
-      sampler_(std::make_unique<PhotonSampler>()) {}
+      sampler_(std::make_unique<PhotonSampler>()) {
+  for (const auto& emitter : scene.emitters()) atInfinity_.push_back(isAtInfinity(*emitter, scene.bbox().center()));
+}
 
 PhotonTracer::~PhotonTracer() = default;
 
@@ -93,6 +105,14 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   // Emitted at OPL 0: the camera side reports every contribution with the
   // pulse of the emitter the photon names, and the film convolves exactly.
   ph.opl = 0.0;
+  // Light from infinitely far away has no finite path: transient_path's
+  // next-event estimation counts a shadow ray toward such an emitter only up
+  // to the last surface it crosses (render/volumetric.cpp, connect), i.e.
+  // its light is at OPL 0 on the outermost surface toward the emitter. A
+  // photon from the emission disk first meets exactly that surface, so its
+  // clock starts there rather than on the disk (which would delay it by the
+  // disk's distance, an artefact of where the disk is placed).
+  ph.clockAtFirstSurface = atInfinity_[emitterIndex];
   if (ph.power.isBlack() || !ph.power.isValid()) return;
   ph.medium = mediumAround(scene_, ph.ray);
   ph.vertex = ph.ray.o;
@@ -128,6 +148,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
         ph.ray = Ray(ms.p, wo);
         ph.vertex = ms.p;
         ph.scattered = ph.indirect = true;
+        ph.clockAtFirstSurface = false;  // (a scene inside an unbounded medium: the clock ran from the disk)
         ++ph.depth;
         passThrough = 0;
         if (!russianRoulette(ph.power, ph.depth, startLevel, sampler)) return;
@@ -136,7 +157,10 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     }
     if (!hit) return;
     // OPL between exact vertices: ray offsets off surfaces must not shorten it.
-    ph.opl += double(eta) * distance(ph.vertex, si.p);
+    if (ph.clockAtFirstSurface)
+      ph.clockAtFirstSurface = false;
+    else
+      ph.opl += double(eta) * distance(ph.vertex, si.p);
     ph.vertex = si.p;
     if (!(ph.opl < horizon_)) return;
     if (isPassThrough(si)) {

@@ -68,6 +68,7 @@ class PhotonTracer {
   const BeamSettings& settings_;
   double horizon_;
   Distribution1D emitterPower_;
+  std::vector<bool> atInfinity_;  // per emitter: directional or environment (photons' clock starts at a surface)
   std::unique_ptr<Sampler> sampler_;
 };
 
