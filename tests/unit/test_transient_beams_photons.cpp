@@ -264,3 +264,33 @@ TEST(TransientBeamsPhotons, MapsDoNotDependOnTheThreadCount) {
         << "beam " << i;
   }
 }
+
+TEST(TransientBeamsPhotons, AreaLightPhotonsLeaveTheShapeWithCosineDirectionsAndItsPower) {
+  // A one-sided square light (side 2, normal +z) in an unbounded medium:
+  // every first beam starts on it, leaves on its front side, carries the
+  // emitted power L pi A, and its direction cosines follow the cosine
+  // (Lambertian) density: mean 2/3 (variance 1/18) and mean square 1/2
+  // (variance 1/12), 5 sigma; a uniform hemisphere would give 1/2 and 1/3.
+  auto scene = loadSceneStrict(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.1"/><float name="albedo" value="0.5"/></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <shape type="rectangle"><ref name="exterior" id="m"/><ref name="interior" id="m"/>
+    <emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+</scene>)");
+  const int64_t n = 20000;
+  PhotonPass pass = tracePhotonPass(*scene, photonSettings(n), 31, Infinity);
+  const Color3f power = Color3f(1.0f, 2.0f, 3.0f) * (Pi * 4.0f);
+  Mean cosine, cosineSq;
+  for (const Beam& beam : pass.beams) {
+    if (beam.depth != 1) continue;
+    ASSERT_NEAR(beam.origin.z, 0.0f, 1e-3f);
+    ASSERT_LE(std::max(std::abs(beam.origin.x), std::abs(beam.origin.y)), 1.0f + 1e-5f);
+    ASSERT_GT(beam.direction.z, 0.0f) << "emitted on the front side only";
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(beam.power[c], power[c], 1e-5f * power[c]);
+    cosine.add(beam.direction.z);
+    cosineSq.add(beam.direction.z * beam.direction.z);
+  }
+  ASSERT_EQ(cosine.count(), n) << "one first beam per photon";
+  EXPECT_NEAR(cosine.mean(), 2.0 / 3.0, 5.0 * std::sqrt(1.0 / 18.0 / double(n)));
+  EXPECT_NEAR(cosineSq.mean(), 0.5, 5.0 * std::sqrt(1.0 / 12.0 / double(n)));
+}
