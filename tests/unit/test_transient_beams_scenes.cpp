@@ -30,6 +30,7 @@ struct BeamsCase {
   bool room = true;            // a closed diffuse room (side 4, normals inward) around everything
   bool foggyRoom = true;       // the room's air and the sensor are the medium "fog" (defined in `content`)
   std::string shared;          // integrator parameters both take (max_depth, hide_emitters)
+  std::string wallParams;      // more parameters of the walls' diffuse BSDF (e.g. a scattering delay)
   std::string sensor = R"(<transform name="to_world"><lookat origin="0, 0, 1.9" target="0, 0, 0" up="0, 1, 0"/></transform>)";
   int bins = 6;
   double binWidth = 2.0;       // [0, 12): direct light, fog and the first wall bounces
@@ -45,7 +46,7 @@ std::string sceneXml(const BeamsCase& s, bool beams) {
   const std::string fog = s.foggyRoom ? R"(<ref name="exterior" id="fog"/>)" : "";
   const std::string walls =
       s.room ? str(R"(<shape type="cube"><transform name="to_world"><scale value="2"/></transform>
-    <boolean name="flip_normals" value="true"/>)", fog, R"(<bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>)")
+    <boolean name="flip_normals" value="true"/>)", fog, R"(<bsdf type="diffuse"><float name="reflectance" value="0.6"/>)", s.wallParams, R"(</bsdf></shape>)")
              : "";
   return str(R"(<scene version="3.0.0">)", integrator, s.content, walls, R"(
   <sensor type="perspective"><float name="fov" value="70"/>)", s.foggyRoom ? R"(<ref id="fog"/>)" : "", s.sensor, R"(
@@ -198,12 +199,15 @@ TEST(TransientBeamsScenes, MediumInsideGlassNestedInFogAgreesWithTransientPath) 
   expectBeamsAgreeWithPath(s, "glass-medium");
 }
 
-TEST(TransientBeamsScenes, PhaseDelaysAgreeWithTransientPath) {
+TEST(TransientBeamsScenes, PhaseAndWallDelaysAgreeWithTransientPath) {
   // Every scattering in the fog takes a fixed delay plus an exponential
   // lifetime: photons add them at each scattering, the camera side once per
-  // ray x beam pair. Bins narrower than the delays so a missing or doubled
-  // delay moves energy between bins.
+  // ray x beam pair. The walls delay each bounce by 0.5 (photons when they
+  // bounce, the camera side before next-event estimation and gathering).
+  // Bins narrower than the delays so a missing or doubled delay moves
+  // energy between bins.
   BeamsCase s;
+  s.wallParams = R"(<float name="delay" value="0.5"/>)";
   s.bins = 8;
   s.binWidth = 1.5;
   s.content = str(R"(<medium type="homogeneous" id="fog"><float name="sigma_t" value="0.4"/>
