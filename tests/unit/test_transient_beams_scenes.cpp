@@ -1,9 +1,10 @@
 // transient_beams on the features the fog Cornell box does not exercise, each
 // against transient_path on a small scene (per coarse time bin and the steady
 // image, transient_agreement_util.h): a heterogeneous (grid) medium, area,
-// spot, projector and directional lights' photons, hide_emitters, a medium
-// inside a glass sphere nested in another medium, phase functions with
-// scattering delays, and gaussian / box / continuous emitter pulses. Every
+// spot, projector, directional and constant-sky photons, hide_emitters, a
+// medium inside a glass sphere nested in another medium, phase-function and
+// wall (BSDF) scattering delays, and gaussian / box / continuous emitter
+// pulses. Every
 // render also checks that no NaN or Inf reaches the film.
 #include <gtest/gtest.h>
 
@@ -33,6 +34,7 @@ struct BeamsCase {
   std::string wallParams;      // more parameters of the walls' diffuse BSDF (e.g. a scattering delay)
   std::string sensor = R"(<transform name="to_world"><lookat origin="0, 0, 1.9" target="0, 0, 0" up="0, 1, 0"/></transform>)";
   int bins = 6;
+  double start = 0.0;
   double binWidth = 2.0;       // [0, 12): direct light, fog and the first wall bounces
   int beamSpp = 2, pathSpp = 64, photons = 20000, runs = 6;
   std::filesystem::path dir = std::filesystem::temp_directory_path();  // where relative file names resolve
@@ -52,7 +54,7 @@ std::string sceneXml(const BeamsCase& s, bool beams) {
   <sensor type="perspective"><float name="fov" value="70"/>)", s.foggyRoom ? R"(<ref id="fog"/>)" : "", s.sensor, R"(
     <sampler type="independent"><integer name="sample_count" value=")", beams ? s.beamSpp : s.pathSpp, R"("/></sampler>
     <film type="transient"><integer name="width" value="10"/><integer name="height" value="10"/>
-      <integer name="temporal_bins" value=")", s.bins, R"("/><float name="start_opl" value="0"/>
+      <integer name="temporal_bins" value=")", s.bins, R"("/><float name="start_opl" value=")", s.start, R"("/>
       <float name="bin_width_opl" value=")", s.binWidth, R"("/><boolean name="write_frames" value="false"/>
       <rfilter type="box"/></film>
   </sensor>
@@ -164,6 +166,22 @@ TEST(TransientBeamsScenes, DirectionalLightPhotonsAgreeWithTransientPath) {
   expectBeamsAgreeWithPath(s, "directional");
 }
 
+TEST(TransientBeamsScenes, ConstantEnvironmentPhotonsAgreeWithTransientPath) {
+  // The directional light's scene under a uniform sky instead: photons from
+  // every direction (the same clock rule), the sky seen behind the cube.
+  BeamsCase s;
+  s.room = s.foggyRoom = false;
+  s.sensor = R"(<transform name="to_world"><lookat origin="0.5, 1.5, 4" target="0, -0.3, 0" up="0, 1, 0"/></transform>)";
+  s.content = str(kFog, R"(
+  <shape type="cube"><ref name="interior" id="fog"/></shape>
+  <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/>
+      <translate y="-1.5"/></transform><bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
+  <emitter type="constant"><rgb name="radiance" value="0.5, 0.6, 0.7"/></emitter>)");
+  s.beamSpp = 8;  // the floor's next-event estimates dominate the noise
+  s.runs = 8;
+  expectBeamsAgreeWithPath(s, "constant");
+}
+
 TEST(TransientBeamsScenes, HiddenEmittersAgreeWithTransientPath) {
   // hide_emitters blacks out the emitter the camera sees directly (through
   // the fog), not its reflection in the mirror sphere nor the light it casts.
@@ -199,21 +217,36 @@ TEST(TransientBeamsScenes, MediumInsideGlassNestedInFogAgreesWithTransientPath) 
   expectBeamsAgreeWithPath(s, "glass-medium");
 }
 
-TEST(TransientBeamsScenes, PhaseAndWallDelaysAgreeWithTransientPath) {
+TEST(TransientBeamsScenes, PhaseDelaysAgreeWithTransientPath) {
   // Every scattering in the fog takes a fixed delay plus an exponential
   // lifetime: photons add them at each scattering, the camera side once per
-  // ray x beam pair. The walls delay each bounce by 0.5 (photons when they
-  // bounce, the camera side before next-event estimation and gathering).
-  // Bins narrower than the delays so a missing or doubled delay moves
-  // energy between bins.
+  // ray x beam pair. Bins narrower than the delays so a missing or doubled
+  // delay moves energy between bins.
   BeamsCase s;
-  s.wallParams = R"(<float name="delay" value="0.5"/>)";
   s.bins = 8;
   s.binWidth = 1.5;
   s.content = str(R"(<medium type="homogeneous" id="fog"><float name="sigma_t" value="0.4"/>
     <float name="albedo" value="0.8"/><phase type="hg"><float name="g" value="0.4"/>
     <float name="delay" value="1"/><float name="lifetime" value="0.8"/></phase></medium>)", kPointLight);
   expectBeamsAgreeWithPath(s, "delays");
+}
+
+TEST(TransientBeamsScenes, WallDelaysAgreeWithTransientPath) {
+  // A room without media whose walls delay every bounce by 0.7 plus an
+  // exponential lifetime of mean 0.3: the camera side adds it at its surface
+  // vertex (before next-event estimation and the photon gather), photons at
+  // each bounce. Bins of 1 over [5, 15), where the direct light (from
+  // OPL 5.5 on) and the first bounces arrive: without the camera's delay
+  // the direct light would arrive a bin early, without the photons' the
+  // indirect light too early and too bright in the window.
+  BeamsCase s;
+  s.foggyRoom = false;
+  s.wallParams = R"(<float name="delay" value="0.7"/><float name="lifetime" value="0.3"/>)";
+  s.bins = 10;
+  s.start = 5.0;
+  s.binWidth = 1.0;
+  s.content = kPointLight;
+  expectBeamsAgreeWithPath(s, "wall-delays");
 }
 
 TEST(TransientBeamsScenes, GaussianAndBoxPulsesAgreeWithTransientPath) {
