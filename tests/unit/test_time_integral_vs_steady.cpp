@@ -15,6 +15,15 @@
 // transient_beams' noise is mostly its photon maps', shared by all pixels of a
 // run, so per-pixel sample variances would understate it) plus, for
 // transient_beams, an explicit allowance for its kernel bias (see kBeamsBias).
+//
+// The runs' spread measures the error only if every run sees many of the
+// events that carry the light. Light found by rare camera samples (the small
+// bright light seen through glass, found by the camera path's specular
+// chain, in every integrator alike) is heavy-tailed: with fewer camera
+// samples per run than the reference, an estimator's runs miss it and their
+// spread does not show it (transient_beams at 8 spp against 128 looked 11 %
+// dark at 5 sigma on the Armadillo; at 128 spp it agrees to 0.2 %). So every
+// estimate here takes the same camera samples per pixel.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,6 +43,7 @@
 
 #include "media_test_util.h"
 #include "render_test_util.h"
+#include "transient_agreement_util.h"
 #include "transient_film_test_util.h"
 
 using namespace femto;
@@ -48,19 +58,19 @@ using Defines = std::map<std::string, std::string>;
 /// freedom: P(|t_10| > 5) is 5e-4 per compared value.
 constexpr double kSigmas = 5.0;
 
-/// transient_beams' kernels make it consistent, not unbiased: near edges
-/// and contacts part of a kernel falls off the surface or out of the medium,
-/// so it reads low there. Measured on the fog Cornell box (16x16, 2x2
-/// blocks, 16 runs, same seeds per radius so the differences are sharper
-/// than the noise): the image mean fell by 0.33 %, 0.72 %, 1.5 % for each
-/// doubling of the surface radius from 0.5 % of the scene's diagonal (0.0173)
-/// to 4 % (0.138), i.e. linearly in the radius, and by 0.16-0.46 % per
-/// doubling of the beam radius from 0.005 to 0.04; the largest block mean
-/// fell by 1.0 % from half the default surface radius to the default (1 %
-/// of the diagonal, which every test here uses). A bias linear in r is
-/// twice what halving r removes: 2 % of the value at the default radii, on
-/// top of the noise.
-constexpr double kBeamsBias = 0.02;
+/// transient_beams' kernel-bias allowance: kKernelBias (2 % of the value,
+/// transient_agreement_util.h), checked here against a measurement on the
+/// fog Cornell box (16x16, 2x2 blocks, 16 runs, the same seeds per radius so
+/// differences are sharper than the noise): the image mean fell by 0.33 %,
+/// 0.72 %, 1.5 % for each doubling of the surface radius from 0.5 % of the
+/// scene's diagonal (0.0173) to 4 % (0.138), i.e. linearly in the radius,
+/// and by 0.16-0.46 % per doubling of the beam radius from 0.005 to 0.04;
+/// the largest block mean fell by 1.0 % from half the default surface radius
+/// to the default (1 % of the diagonal, which every test here uses). A bias
+/// linear in r is twice what halving r removes: 2 % at the default radii.
+/// (On the Armadillo, halving or doubling the surface radius moved the image
+/// mean by < 0.3 %.)
+constexpr double kBeamsBias = kKernelBias;
 
 std::shared_ptr<Scene> loadShipped(const std::string& name, const Defines& defines) {
   static bool prepared = [] {
@@ -82,36 +92,27 @@ struct Image {
   double at(int x, int y, int c) const { return rgb[(size_t(y) * w + x) * 3 + c]; }
 };
 
-Image renderImage(const Scene& scene, const std::filesystem::path& dir, uint64_t seed) {
-  RenderOptions options;
-  options.output = dir / "out.exr";
-  options.seed = seed;
-  options.progress = false;
-  RenderStats stats = scene.integrator().render(scene, options);
-  EXPECT_TRUE(stats.completed);
-  EXPECT_EQ(stats.invalidSamples, 0u) << "NaN, Inf or negative samples";
+Image renderImage(const std::shared_ptr<Scene>& scene, const std::filesystem::path& dir, uint64_t seed) {
+  const auto out = dir / "out.exr", npy = dir / "out.npy";
+  std::filesystem::remove(npy);  // render() reads a volume if there is one: never a stale one
+  Rendered r = render(scene, out, seed);
   Image image;
-  const auto npy = dir / "out.npy";
-  if (!std::filesystem::exists(npy)) {  // a steady film
-    Bitmap steady = readImage(options.output);
-    image.w = steady.width, image.h = steady.height;
-    image.rgb.assign(steady.data.size() / steady.channels * 3, 0.0);
-    for (size_t p = 0; p < image.rgb.size() / 3; ++p)
-      for (int c = 0; c < 3; ++c) image.rgb[p * 3 + c] = steady.data[p * steady.channels + c];
-    return image;
-  }
-  int bins = 0;
-  std::vector<float> volume = readVolume(npy, image.h, image.w, bins);
-  Bitmap before = readImage(dir / "out_before.exr"), after = readImage(dir / "out_after.exr");
+  image.w = r.steady.width, image.h = r.steady.height;
   image.rgb.assign(size_t(image.w) * image.h * 3, 0.0);
+  const bool transient = !r.volume.empty();
+  Bitmap before, after;
+  if (transient) before = readImage(dir / "out_before.exr"), after = readImage(dir / "out_after.exr");
   for (int y = 0; y < image.h; ++y)
     for (int x = 0; x < image.w; ++x)
       for (int c = 0; c < 3; ++c) {
-        double sum = double(before.pixel(x, y)[c]) + after.pixel(x, y)[c];
-        for (int b = 0; b < bins; ++b) sum += volume[((size_t(y) * image.w + x) * bins + b) * 3 + c];
-        image.rgb[(size_t(y) * image.w + x) * 3 + c] = sum;
+        double& v = image.rgb[(size_t(y) * image.w + x) * 3 + c];
+        if (!transient) {
+          v = r.steady.pixel(x, y)[c];
+          continue;
+        }
+        v = double(before.pixel(x, y)[c]) + after.pixel(x, y)[c];
+        for (int b = 0; b < r.bins; ++b) v += r.volume[((size_t(y) * r.w + x) * r.bins + b) * 3 + c];
       }
-  std::filesystem::remove(npy);  // the next run's film must not find a stale volume
   return image;
 }
 
@@ -147,55 +148,64 @@ std::vector<bool> comparedPixels(const Scene& scene, int w, int h, float radius)
 }
 
 /// Per block of a `blocks` x `blocks` grid and channel, the block's mean
-/// pixel value (over the compared pixels), over `runs` renders with seeds
-/// seed0, seed0 + 1, ...
-std::vector<Mean> blockMeans(const Scene& scene, const std::string& name, uint64_t seed0, int runs, int blocks,
+/// pixel value (over the compared pixels), and last the whole image's per
+/// channel (the sharpest comparison: an error spread over the image shows
+/// there first), over `runs` renders with seeds seed0, seed0 + 1, ...
+std::vector<Mean> blockMeans(const std::shared_ptr<Scene>& scene, const std::string& name, uint64_t seed0, int runs, int blocks,
                              float lightMargin) {
   auto dir = scratchDir("integral-" + name);
-  std::vector<Mean> means(size_t(blocks) * blocks * 3);
+  const int whole = blocks * blocks;
+  std::vector<Mean> means(size_t(whole + 1) * 3);
   std::vector<bool> keep;
   for (int run = 0; run < runs; ++run) {
     Image image = renderImage(scene, dir, seed0 + uint64_t(run));
-    if (keep.empty()) keep = comparedPixels(scene, image.w, image.h, lightMargin);
+    if (keep.empty()) keep = comparedPixels(*scene, image.w, image.h, lightMargin);
     std::vector<double> sums(means.size(), 0.0), counts(means.size(), 0.0);
     for (int y = 0; y < image.h; ++y)
       for (int x = 0; x < image.w; ++x) {
         if (!keep[size_t(y) * image.w + x]) continue;
         const int block = (y * blocks / image.h) * blocks + x * blocks / image.w;
-        for (int c = 0; c < 3; ++c) sums[block * 3 + c] += image.at(x, y, c), counts[block * 3 + c] += 1.0;
+        for (int c = 0; c < 3; ++c)
+          for (int b : {block, whole}) sums[b * 3 + c] += image.at(x, y, c), counts[b * 3 + c] += 1.0;
       }
     for (size_t k = 0; k < means.size(); ++k) means[k].add(counts[k] > 0.0 ? sums[k] / counts[k] : 0.0);
   }
   return means;
 }
 
-/// Each block mean of `estimate` within kSigmas standard errors of the
+/// Each mean of `estimate` within kSigmas standard errors of the
 /// difference (plus `bias` times the reference value) of `reference`'s.
-/// Prints every difference in units of its standard error.
-void expectAgree(const std::vector<Mean>& estimate, const std::vector<Mean>& reference, const std::string& what,
+/// Prints the whole image's differences and the largest, in standard errors.
+void expectBlocksAgree(const std::vector<Mean>& estimate, const std::vector<Mean>& reference, const std::string& what,
                  double bias = 0.0) {
   ASSERT_EQ(estimate.size(), reference.size());
-  double worst = 0.0, worstRelative = 0.0;
-  for (size_t k = 0; k < estimate.size(); ++k) {
+  const size_t n = estimate.size();
+  std::vector<double> sigmas(n);
+  double worst = 0.0;
+  for (size_t k = 0; k < n; ++k) {
     const double a = estimate[k].mean(), b = reference[k].mean();
     const double se = std::hypot(estimate[k].standardError(), reference[k].standardError());
     ASSERT_GT(se, 0.0) << what << ": noiseless estimates cannot be told apart from equal ones";
-    const double sigmas = (a - b) / se;
-    if (std::abs(sigmas) > std::abs(worst)) worst = sigmas;
-    if (std::abs(b) > 0.0 && std::abs(a / b - 1.0) > std::abs(worstRelative)) worstRelative = a / b - 1.0;
+    sigmas[k] = (a - b) / se;
+    if (std::abs(sigmas[k]) > std::abs(worst)) worst = sigmas[k];
     EXPECT_NEAR(a, b, kSigmas * se + bias * std::abs(b) + 1e-9)
-        << what << ", block " << k / 3 << " channel " << k % 3 << ": " << sigmas << " standard errors ("
-        << 100.0 * (a / b - 1.0) << " %)";
+        << what << (k + 3 >= n ? ", whole image" : str(", block ", k / 3)) << " channel " << k % 3 << ": "
+        << sigmas[k] << " standard errors (" << 100.0 * (a / b - 1.0) << " %)";
   }
-  std::printf("%s: %zu block means, largest difference %+.2f sigma, largest relative %+.2f %%\n", what.c_str(),
-              estimate.size(), worst, 100.0 * worstRelative);
+  std::printf("%s: whole image RGB %+.2f %+.2f %+.2f sigma (%+.2f %% in total), largest of %zu means %+.2f sigma\n",
+              what.c_str(), sigmas[n - 3], sigmas[n - 2], sigmas[n - 1],
+              100.0 * (estimate[n - 3].mean() + estimate[n - 2].mean() + estimate[n - 1].mean()) /
+                      (reference[n - 3].mean() + reference[n - 2].mean() + reference[n - 1].mean()) -
+                  100.0,
+              n, worst);
 }
 
-/// Relative standard error of the whole image's mean (all blocks and
-/// channels): how sharp a comparison is.
+/// Relative standard error of the whole image's mean (the last three
+/// entries, one per channel): how sharp a comparison is.
 double relativeError(const std::vector<Mean>& means) {
   double sum = 0.0, var = 0.0;
-  for (const Mean& m : means) sum += m.mean(), var += m.standardError() * m.standardError();
+  for (size_t k = means.size() - 3; k < means.size(); ++k)
+    sum += means[k].mean(), var += means[k].standardError() * means[k].standardError();
   return std::sqrt(var) / sum;
 }
 
@@ -224,13 +234,13 @@ void compareWithSteady(const Comparison& c) {
   tp["integrator"] = "transient_path", tb["integrator"] = "transient_beams";
   st["film"] = "hdrfilm";
   // Seeds: each estimate its own range, so no two renders share random numbers.
-  auto reference = blockMeans(*loadShipped(c.scene, st), c.scene + "-steady", 3000, c.runs, c.blocks, c.lightMargin);
-  auto path = blockMeans(*loadShipped(c.scene, tp), c.scene + "-tp", 1000, c.runs, c.blocks, c.lightMargin);
-  auto beams = blockMeans(*loadShipped(c.scene, tb), c.scene + "-tb", 2000, c.runs, c.blocks, c.lightMargin);
+  auto reference = blockMeans(loadShipped(c.scene, st), c.scene + "-steady", 3000, c.runs, c.blocks, c.lightMargin);
+  auto path = blockMeans(loadShipped(c.scene, tp), c.scene + "-tp", 1000, c.runs, c.blocks, c.lightMargin);
+  auto beams = blockMeans(loadShipped(c.scene, tb), c.scene + "-tb", 2000, c.runs, c.blocks, c.lightMargin);
   std::printf("%s: relative standard errors of the image mean: steady %.2g, transient_path %.2g, transient_beams %.2g\n",
               c.scene.c_str(), relativeError(reference), relativeError(path), relativeError(beams));
-  expectAgree(path, reference, c.scene + ": transient_path time integral vs steady");
-  expectAgree(beams, reference, c.scene + ": transient_beams time integral vs steady", kBeamsBias);
+  expectBlocksAgree(path, reference, c.scene + ": transient_path time integral vs steady");
+  expectBlocksAgree(beams, reference, c.scene + ": transient_beams time integral vs steady", kBeamsBias);
 }
 
 }  // namespace
@@ -247,7 +257,7 @@ TEST(TimeIntegralVsSteady, FogCornellBox) {
   c.common = {{"resolution", "16"}};
   c.window = {{"bins", "8"}, {"bin_width", "1.28"}, {"frames", "false"}};
   c.transientPath = {{"spp", "64"}};
-  c.beams = {{"spp", "8"}, {"photon_count", "20000"}};
+  c.beams = {{"spp", "64"}, {"photon_count", "20000"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "64"}};
   c.lightMargin = 0.5f;
   c.runs = 8;
@@ -264,7 +274,7 @@ TEST(TimeIntegralVsSteady, SeedGlassMirrorBalls) {
   c.common = {{"resolution", "16"}};
   c.window = {{"bins", "8"}, {"bin_width", "1"}};
   c.transientPath = {{"spp", "32"}};
-  c.beams = {{"spp", "4"}};
+  c.beams = {{"spp", "32"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "32"}};
   c.runs = 6;
   compareWithSteady(c);
@@ -280,7 +290,7 @@ TEST(TimeIntegralVsSteady, SeedColouredMirrorsCaustic) {
   c.common = {{"resolution", "16"}, {"height", "12"}, {"light_radius", "0.25"}};
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "256"}};
-  c.beams = {{"spp", "16"}};
+  c.beams = {{"spp", "256"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "256"}};
   c.runs = 8;
   compareWithSteady(c);
@@ -306,8 +316,9 @@ TEST(TimeIntegralVsSteady, SeedGlassArmadillo) {
   c.common = {{"resolution", "16"}, {"height", "12"}, {"mesh", mesh.string()}};
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "128"}};
-  c.beams = {{"spp", "8"}};
+  c.beams = {{"spp", "128"}};
   c.steady = {{"integrator", "transient_path"}, {"spp", "128"}};
   c.runs = 6;
   compareWithSteady(c);
 }
+
