@@ -234,6 +234,8 @@ void compareWithSteady(const Comparison& c) {
   tp["integrator"] = "transient_path", tb["integrator"] = "transient_beams";
   st["film"] = "hdrfilm";
   // Seeds: each estimate its own range, so no two renders share random numbers.
+  // The reference takes twice the camera samples of the transient renders:
+  // its noise enters both comparisons.
   auto reference = blockMeans(loadShipped(c.scene, st), c.scene + "-steady", 3000, c.runs, c.blocks, c.lightMargin);
   auto path = blockMeans(loadShipped(c.scene, tp), c.scene + "-tp", 1000, c.runs, c.blocks, c.lightMargin);
   auto beams = blockMeans(loadShipped(c.scene, tb), c.scene + "-tb", 2000, c.runs, c.blocks, c.lightMargin);
@@ -258,7 +260,7 @@ TEST(TimeIntegralVsSteady, FogCornellBox) {
   c.window = {{"bins", "8"}, {"bin_width", "1.28"}, {"frames", "false"}};
   c.transientPath = {{"spp", "64"}};
   c.beams = {{"spp", "64"}, {"photon_count", "20000"}};
-  c.steady = {{"integrator", "transient_path"}, {"spp", "64"}};
+  c.steady = {{"integrator", "transient_path"}, {"spp", "128"}};
   c.lightMargin = 0.5f;
   c.runs = 8;
   compareWithSteady(c);
@@ -275,7 +277,7 @@ TEST(TimeIntegralVsSteady, SeedGlassMirrorBalls) {
   c.window = {{"bins", "8"}, {"bin_width", "1"}};
   c.transientPath = {{"spp", "32"}};
   c.beams = {{"spp", "32"}};
-  c.steady = {{"integrator", "transient_path"}, {"spp", "32"}};
+  c.steady = {{"integrator", "transient_path"}, {"spp", "64"}};
   c.runs = 6;
   compareWithSteady(c);
 }
@@ -291,7 +293,7 @@ TEST(TimeIntegralVsSteady, SeedColouredMirrorsCaustic) {
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "256"}};
   c.beams = {{"spp", "256"}};
-  c.steady = {{"integrator", "transient_path"}, {"spp", "256"}};
+  c.steady = {{"integrator", "transient_path"}, {"spp", "512"}};
   c.runs = 8;
   compareWithSteady(c);
 }
@@ -317,7 +319,7 @@ TEST(TimeIntegralVsSteady, SeedGlassArmadillo) {
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "128"}};
   c.beams = {{"spp", "128"}};
-  c.steady = {{"integrator", "transient_path"}, {"spp", "128"}};
+  c.steady = {{"integrator", "transient_path"}, {"spp", "256"}};
   c.runs = 6;
   compareWithSteady(c);
 }
