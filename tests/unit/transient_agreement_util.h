@@ -53,22 +53,31 @@ inline Rendered render(const std::shared_ptr<Scene>& scene, const std::filesyste
   return r;
 }
 
-/// Per time bin (and one more entry for the steady image), the image sum of
-/// the channel average, over `runs` renders with different seeds.
-inline std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs) {
+/// Per run (seeds 100, 101, ...), per time bin and one more entry for the
+/// steady image: the image sum of the channel average.
+inline std::vector<std::vector<double>> imageSumsPerRun(const std::shared_ptr<Scene>& scene, const std::string& name,
+                                                        int runs) {
   auto dir = scratchDir(name);
-  std::vector<Mean> sums;
+  std::vector<std::vector<double>> perRun;
   for (int run = 0; run < runs; ++run) {
     Rendered r = render(scene, dir / "out.exr", uint64_t(100 + run));
-    sums.resize(size_t(r.bins) + 1);
-    std::vector<double> perBin(size_t(r.bins) + 1, 0.0);
+    std::vector<double>& perBin = perRun.emplace_back(size_t(r.bins) + 1, 0.0);
     for (size_t i = 0; i < r.volume.size(); ++i) perBin[(i / 3) % size_t(r.bins)] += r.volume[i] / 3.0;
     for (int y = 0; y < r.steady.height; ++y)
       for (int x = 0; x < r.steady.width; ++x)
         for (int c = 0; c < 3; ++c) perBin.back() += r.steady.pixel(x, y)[c] / 3.0;
-    for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
   }
   std::filesystem::remove_all(dir);
+  return perRun;
+}
+
+/// The same sums as means over the runs.
+inline std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs) {
+  std::vector<Mean> sums;
+  for (const std::vector<double>& perBin : imageSumsPerRun(scene, name, runs)) {
+    sums.resize(perBin.size());
+    for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
+  }
   return sums;
 }
 

@@ -71,6 +71,14 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   else
     props.raise("store", str("must be \"all\" (every scattering order) or \"single\" (single scattering), got \"",
                              store, "\""));
+  std::string estimator = props.getString("volume_estimator", "beams");
+  if (estimator == "beams")
+    s.volumeEstimator = VolumeEstimator::Beams;
+  else if (estimator == "points")
+    s.volumeEstimator = VolumeEstimator::Points;
+  else
+    props.raise("volume_estimator", str("must be \"beams\" (photon beams, ray x beam 1D) or \"points\" (photon "
+                                        "points, the beam radiance estimate), got \"", estimator, "\""));
   s.observerTime = props.getBool("observer_time", true);
   s.hideEmitters = props.getBool("hide_emitters", false);
   return s;
@@ -100,7 +108,12 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   const Vec3f e = box.valid() ? box.extents() : Vec3f(0.0f);
   const double volume = double(e.x) * double(e.y) * double(e.z);
   const float diagonal = 2.0f * sceneBounds.boundingRadius();
-  double r = volume > 0.0 && length > 0.0 ? 2.0 * kTargetPairHits * std::cbrt(volume * volume) / (Pi * length) : 0.0;
+  const double area = std::cbrt(volume * volume);  // V^(2/3)
+  double r = 0.0;
+  if (volumeEstimator == VolumeEstimator::Points)
+    r = volume > 0.0 && !beams.empty() ? std::sqrt(kTargetPairHits * area / (Pi * double(beams.size()))) : 0.0;
+  else
+    r = volume > 0.0 && length > 0.0 ? 2.0 * kTargetPairHits * area / (Pi * length) : 0.0;
   // Beams in a plane or on a line (no volume), or none: the scene's scale.
   if (!(r > 0.0) || !std::isfinite(r)) r = kBeamRadiusFraction * diagonal;
   // Never wider than the old fixed default: few photons must not blur the medium away.
@@ -111,7 +124,11 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   return s;
 }
 
-float BeamSettings::beamRadius(int pass) const { return float(radius * reduction(alpha, pass)); }
+float BeamSettings::beamRadius(int pass) const {
+  // The 1D kernel (beams) shrinks r, the 2D kernel (points) r^2 by the factor.
+  const double factor = reduction(alpha, pass);
+  return float(radius * (volumeEstimator == VolumeEstimator::Points ? std::sqrt(factor) : factor));
+}
 
 float BeamSettings::surfaceRadiusOf(int pass) const { return float(surfaceRadius * std::sqrt(reduction(alpha, pass))); }
 

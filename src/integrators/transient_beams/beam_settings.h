@@ -19,6 +19,16 @@ enum class BeamStore {
   All,     // every segment: all orders of scattering in media
 };
 
+/// What photons leave in media, and so which estimate a camera segment in a
+/// medium makes (docs/photon-beams.md, "Photon points vs photon beams").
+enum class VolumeEstimator {
+  /// Photon beams and the ray x beam 1D estimate (ray_beam.h): the default.
+  Beams,
+  /// Photon points at the photons' scattering vertices and the beam radiance
+  /// estimate, "point x beam 2D" (ray_point.h): for comparison.
+  Points,
+};
+
 struct BeamSettings {
   int passes = 1;
   int64_t photonCount = 100000;  // photons traced per pass (all leave surface photons)
@@ -30,6 +40,7 @@ struct BeamSettings {
   int maxDepth = -1;             // longest camera + photon path in segments (-1: no limit)
   int rrDepth = 5;               // photon segments before Russian roulette may end a photon
   BeamStore store = BeamStore::All;
+  VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;      // the camera segment counts toward the OPL
   bool hideEmitters = false;     // emitters seen directly appear black
   SourceLocation location;       // the <integrator> element, for errors found at render time
@@ -51,9 +62,13 @@ struct BeamSettings {
   ///   r = 2 kTargetPairHits V^(2/3) / (pi L)
   /// gives each such segment about kTargetPairHits pairs: the estimate's
   /// cost per camera segment stays bounded whatever the photon count, and
-  /// the radius shrinks as photons are added. Falls back to a fraction of
-  /// `sceneBounds`' diagonal when the beams span no volume. Deterministic:
-  /// the beams are the same for a given seed on any thread count.
+  /// the radius shrinks as photons are added. Photon points (P of them,
+  /// zero-length beams) instead meet a segment in its cylinder of volume
+  /// pi r^2 V^(1/3), P pi r^2 V^(1/3) / V of them, so
+  ///   r = sqrt(kTargetPairHits V^(2/3) / (pi P)).
+  /// Falls back to a fraction of `sceneBounds`' diagonal when the beams span
+  /// no volume. Deterministic: the beams are the same for a given seed on any
+  /// thread count.
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const BoundingBox3f& sceneBounds) const;
 
   /// Pairs per camera segment the derived beam radius aims at: enough that
@@ -67,7 +82,10 @@ struct BeamSettings {
   /// (Jarosz, Nowrouzezahrai, Thomas, Sloan, Zwicker 2011, "Progressive Photon
   /// Beams", sec. 4). The surface estimate uses a 2D kernel (variance ~ 1/r^2):
   /// r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1) (Knaus and Zwicker 2011,
-  /// "Progressive Photon Mapping: A Probabilistic Approach", eq. 20).
+  /// "Progressive Photon Mapping: A Probabilistic Approach", eq. 20). Photon
+  /// points in media are gathered with a 2D kernel too (the disc across the
+  /// camera ray, ray_point.h), so their radius follows the surface schedule.
+  /// beamRadius() is the medium kernel's radius, for beams or points.
   float beamRadius(int pass) const;
   float surfaceRadiusOf(int pass) const;
 

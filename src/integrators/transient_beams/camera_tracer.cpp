@@ -12,6 +12,7 @@
 #include <femto/render/volumetric.h>
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
+#include <transient_beams/ray_point.h>
 
 namespace femto::beams {
 namespace {
@@ -134,6 +135,10 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const double horizon = recorder.horizon();
   const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
   const PhaseFunction& phase = medium.phase();
+  // Beams (ray x beam 1D) or photon points (zero-length beams, the beam
+  // radiance estimate, ray_point.h): the same estimate once the pair's
+  // geometry is known, T_beam aside (a point's power already holds it).
+  const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
   for (uint32_t index : scratch_) {
     const Beam& beam = beams[index];
     // Beams of another medium overlapping this one (nested media) do not scatter here.
@@ -141,7 +146,9 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     const double opl0 = s.opl + beam.opl;
     if (!(opl0 < horizon)) continue;
     RayBeamHit hit;
-    if (!rayBeamIntersect(segment, beam, maps_.beamRadius, hit) || !(hit.kernel > 0.0f)) continue;
+    const bool near = points ? rayPointIntersect(segment, beam, maps_.beamRadius, hit)
+                             : rayBeamIntersect(segment, beam, maps_.beamRadius, hit);
+    if (!near || !(hit.kernel > 0.0f)) continue;
     const Point3f x = segment.ray(hit.tRay);
     float fp = phase.eval(-s.ray.d, -beam.direction);
     if (!(fp > 0.0f)) continue;
@@ -149,7 +156,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
                     float(double(hit.kernel) * invPhotons * gatherWeight);
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler);
-    value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
+    if (!points) value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
     recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,

@@ -10,7 +10,10 @@
 //   throughput sigma_s(x) f_p(-ray.d, -beam.d) T_cam(tRay) T_beam(tBeam) Phi kernel / N
 //
 // spread over the pair's OPL interval (camera OPL + beam OPL + overlap), N the
-// photons traced in the pass. The camera ray itself is only attenuated in
+// photons traced in the pass. With volume_estimator = "points" the map holds
+// photon points (zero-length beams) and each point within the radius of the
+// segment adds the same with the 2D kernel 1/(pi r^2) and T_beam = 1, at one
+// OPL (rayPointIntersect, ray_point.h). The camera ray itself is only attenuated in
 // media (T_cam to the surface), never scattered: medium radiance comes from
 // the beams alone. At the final surface, direct light comes from next-event
 // estimation (through media, with its OPL) and indirect light and caustics

@@ -77,6 +77,18 @@ struct Photon {
   bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
 };
 
+/// A photon point's power in beam units (ray_point.h): the power arriving at
+/// a free-flight event times T(t)/p(t), i.e. MediumSample::weight
+/// (sigma_s T/p) over sigma_s. Then sum_i Phi_i delta(x - x_i) has the
+/// expectation of the beams' sum_b Phi_b T_b(s) delta_line, and both
+/// estimators multiply by sigma_s where the camera ray meets the light. A
+/// channel that cannot scatter (sigma_s = 0, hence weight 0) stays 0.
+Color3f pointPower(const Color3f& arriving, const Color3f& weight, const Color3f& sigmaS) {
+  Color3f p;
+  for (int c = 0; c < 3; ++c) p[c] = sigmaS[c] > 0.0f ? arriving[c] * weight[c] / sigmaS[c] : 0.0f;
+  return p.isValid() ? p : Color3f(0.0f);
+}
+
 }  // namespace
 
 PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, double horizon)
@@ -114,6 +126,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   // disk's distance, an artefact of where the disk is placed).
   ph.clockAtFirstSurface = atInfinity_[emitterIndex];
   if (ph.power.isBlack() || !ph.power.isValid()) return;
+  const bool storePoints = settings_.volumeEstimator == VolumeEstimator::Points;
   ph.medium = mediumAround(scene_, ph.ray);
   ph.vertex = ph.ray.o;
   const float startLevel = ph.power.maxValue();
@@ -126,17 +139,26 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     float eta = ph.medium ? ph.medium->eta() : ph.surfaceEta;
     if (ph.medium) {
       const Medium& medium = *ph.medium;
-      if (storeBeams && (settings_.store == BeamStore::All || !ph.scattered)) {
+      // Beams and points (zero-length beams at scattering vertices) obey the same store rule.
+      const bool storeHere = storeBeams && (settings_.store == BeamStore::All || !ph.scattered);
+      if (storeHere && !storePoints) {
         // From the exact vertex, so the beam's OPL and geometry agree.
         float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(medium, ph.opl, horizon_);
         if (length > 0.0f && std::isfinite(length))
           beams.push_back(Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, eta, int16_t(ph.depth), ph.emitter, &medium});
       }
       MediumSample ms = medium.sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
+      const Color3f arriving = ph.power;
       ph.power *= ms.weight;
       if (ph.power.isBlack()) return;
       if (ms.scattered) {
         ph.opl += double(eta) * distance(ph.vertex, ms.p);
+        // A photon point: the light arriving here, before this vertex's delay and phase sampling.
+        if (storeHere && storePoints && ph.opl < horizon_) {
+          const Color3f point = pointPower(arriving, ms.weight, medium.scatteringCoefficient(ms.p));
+          if (!point.isBlack())
+            beams.push_back(Beam{ms.p, ph.ray.d, 0.0f, point, ph.opl, eta, int16_t(ph.depth), ph.emitter, &medium});
+        }
         const PhaseFunction& phase = medium.phase();
         if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
         if (!(ph.opl < horizon_)) return;

@@ -11,6 +11,9 @@
 //   next segment starts; the camera side weights a beam by its transmittance).
 //   BeamStore::Single keeps only the beams of photons that have not scattered
 //   yet (straight from the emitter or through mirrors and glass).
+//   With VolumeEstimator::Points photons leave photon points instead: a
+//   zero-length Beam at every scattering vertex in a medium (ray_point.h),
+//   with the direction it arrived from and its power in beam units.
 // * Photons reaching a surface with a non-specular BSDF after at least one
 //   scattering event or specular bounce become SurfacePhotons: the indirect
 //   and caustic light the camera side adds to next-event estimation (which
@@ -55,8 +58,8 @@ class PhotonTracer {
   PhotonTracer(const Scene& scene, const BeamSettings& settings, double horizon);
   ~PhotonTracer();
 
-  /// Trace photon `index` of the pass seeded `seed`, appending its beams
-  /// (unless `storeBeams` is false) and surface photons.
+  /// Trace photon `index` of the pass seeded `seed`, appending its beams or
+  /// photon points (unless `storeBeams` is false) and surface photons.
   void trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
              bool storeBeams = true);
 

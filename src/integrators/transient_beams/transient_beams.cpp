@@ -32,6 +32,9 @@
 // | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
 // | rr_depth       | integer | 5              | photon segments before Russian roulette                   | -      |
 // | store          | string  | "all"          | beams stored: "all" orders, or "single" scattering only   | -      |
+// | volume_estimator | string | "beams"       | media: "beams" (ray x beam 1D) or "points" (photon points | -      |
+// |                |         |                | at scattering vertices, beam radiance estimate, 2D kernel:|        |
+// |                |         |                | radius, alpha and beam_photon_count then apply to points) |        |
 // | observer_time  | boolean | true           | include the camera segment in the OPL                     | -      |
 // | hide_emitters  | boolean | false          | emitters seen directly appear black                       | -      |
 // ("diagonal": of the scene's bounding box.) At the end of a render one log
@@ -146,7 +149,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     return str("TransientBeamsIntegrator[passes=", settings_.passes, ", photon_count=", settings_.photonCount,
                ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius, ", alpha=", settings_.alpha,
                ", max_depth=", settings_.maxDepth, ", store=",
-               settings_.store == beams::BeamStore::All ? "all" : "single", ", observer_time=",
+               settings_.store == beams::BeamStore::All ? "all" : "single", ", volume_estimator=",
+               settings_.volumeEstimator == beams::VolumeEstimator::Points ? "points" : "beams", ", observer_time=",
                settings_.observerTime ? "true" : "false", "]");
   }
 
