@@ -266,6 +266,21 @@ TEST(TimeIntegralVsSteady, FogCornellBox) {
   compareWithSteady(c);
 }
 
+TEST(TimeIntegralVsSteady, CornellBoxWithoutFogAgainstPath) {
+  // The same box without its fog (-D medium=none): the reference is the
+  // steady `path` integrator, whose code shares nothing with the transient
+  // integrators but the BSDFs, emitters and next-event helpers.
+  Comparison c;
+  c.scene = "cornell-box-fog";
+  c.common = {{"resolution", "16"}, {"medium", "none"}};
+  c.window = {{"bins", "8"}, {"bin_width", "1.28"}, {"frames", "false"}};
+  c.transientPath = {{"spp", "32"}};
+  c.beams = {{"spp", "32"}, {"photon_count", "20000"}};
+  c.steady = {{"integrator", "path"}, {"spp", "64"}};
+  c.runs = 6;
+  compareWithSteady(c);
+}
+
 TEST(TimeIntegralVsSteady, SeedGlassMirrorBalls) {
   // Fog, a glass and a mirror ball, a small sphere light (finite variance:
   // no mask). Window OPL 3 to 11 in 8 bins; the reference is transient_path
