@@ -1,6 +1,7 @@
 // The scenes that reproduce the seed's figures (scenes/seed-*, Marco et al.,
 // "Transient Photon Beams"): each loads in strict mode and renders finite
-// values at a small size; the glass ball of the caustic scene delays its
+// values at a small size; each one's integrator files (-D integrator=...)
+// load strictly and receive its parameters; the glass ball of the caustic scene delays its
 // caustic by (eta - 1) 2R; without observer time the first light reaching a
 // pixel left the light exactly |light -> visible point| earlier, i.e. the
 // wavefronts are centred on the light; the caustic scene's continuous
@@ -135,6 +136,29 @@ TEST(SeedScenes, EachLoadsStrictlyAndRendersFiniteLight) {
       total += v;
     }
     EXPECT_GT(total, 0.0) << "some light arrives inside the default time window";
+  }
+}
+
+TEST(SeedScenes, EachIntegratorFileReceivesTheSceneParameters) {
+  // -D integrator=NAME includes integrator-NAME.xml beside each scene: it must
+  // load strictly (every parameter it sets is read) and pass on the scene's
+  // max_depth and observer_time, and transient_beams' own parameters.
+  auto dir = scratchDir("seed-integrator-files");
+  for (std::string name : {"seed-glass-mirror-balls", "seed-coloured-mirrors-caustic", "seed-glass-armadillo"}) {
+    SCOPED_TRACE(name);
+    std::map<std::string, std::string> defines = {{"max_depth", "7"}, {"observer_time", "false"}};
+    if (name == "seed-glass-armadillo") defines["mesh"] = writeOctahedron(dir).string();
+    defines["integrator"] = "transient_path";
+    std::string path = loadSeedScene(name, defines)->integrator().toString();
+    EXPECT_NE(path.find("TransientPathIntegrator["), std::string::npos) << path;
+    EXPECT_NE(path.find("max_depth=7,"), std::string::npos) << path;
+    EXPECT_NE(path.find("observer_time=false"), std::string::npos) << path;
+    defines["integrator"] = "transient_beams";
+    defines.insert({{"passes", "3"}, {"photon_count", "1234"}, {"surface_radius", "0.02"}, {"store", "single"}});
+    std::string beams = loadSeedScene(name, defines)->integrator().toString();
+    for (const char* expected : {"TransientBeamsIntegrator[passes=3,", "photon_count=1234,", "surface_radius=0.02,",
+                                 "max_depth=7,", "store=single,", "observer_time=false"})
+      EXPECT_NE(beams.find(expected), std::string::npos) << beams << " lacks " << expected;
   }
 }
 
@@ -305,9 +329,9 @@ TEST(SeedScenes, ContinuousEmissionIsTheRunningIntegralOfTheDiracSequenceAndEnds
 }
 
 TEST(SeedScenes, TransientBeamsFramesIntegrateToTheirSteadyImage) {
-  // The glass/mirror-balls scene through -D integrator=transient_beams (its
-  // default photon count and radii; the shared <integrator> block passes only
-  // max_depth and observer_time), the window (OPL 0 to 12) covering most of
+  // The glass/mirror-balls scene through -D integrator=transient_beams (the
+  // passes, photon counts and radii of its integrator-transient_beams.xml,
+  // one camera sample per pass), the window (OPL 0 to 12) covering most of
   // the light: the volume summed over bins plus before and after is the
   // steady image (every beam and photon estimate is deposited exactly).
   auto dir = scratchDir("seed-beams-steady");
