@@ -330,14 +330,15 @@ TEST(SeedScenes, ContinuousEmissionIsTheRunningIntegralOfTheDiracSequenceAndEnds
 
 TEST(SeedScenes, TransientBeamsFramesIntegrateToTheirSteadyImage) {
   // The glass/mirror-balls scene through -D integrator=transient_beams (the
-  // passes, photon counts and radii of its integrator-transient_beams.xml,
-  // one camera sample per pass), the window (OPL 0 to 12) covering most of
+  // photon counts and radii of its integrator-transient_beams.xml; two
+  // passes of one camera sample), the window (OPL 0 to 12) covering most of
   // the light: the volume summed over bins plus before and after is the
   // steady image (every beam and photon estimate is deposited exactly).
   auto dir = scratchDir("seed-beams-steady");
   auto scene = loadSeedScene("seed-glass-mirror-balls", {{"integrator", "transient_beams"},
                                                          {"resolution", "12"},
                                                          {"spp", "1"},
+                                                         {"passes", "2"},
                                                          {"start", "0"},
                                                          {"bins", "48"},
                                                          {"bin_width", "0.25"}});
