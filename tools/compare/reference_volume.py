@@ -169,7 +169,8 @@ def multi_seed_reference(femto, scene, defines, integrator, param, budget, seeds
     os.replace(path + ".tmp.npy", path)
     _write_sidecar(os.path.splitext(renders[0])[0] + ".json", os.path.join(folder, "reference.json"), rebin_factor)
     render_meta = [reference_meta(r) or {} for r in renders]
-    meta = dict(spec, scene_file=os.path.abspath(scene), file="reference.npy", renders=renders,
+    meta = dict(spec, scene_file=os.path.abspath(scene), file="reference.npy",
+                renders=[os.path.abspath(r) for r in renders],
                 seconds=[m.get("seconds") for m in render_meta],
                 cpu_seconds=[m.get("cpu_seconds") for m in render_meta], epsilon=epsilon,
                 relmse_estimate=estimates[1], integral_relmse_estimate=estimates[bins])
