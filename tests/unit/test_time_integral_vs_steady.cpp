@@ -317,13 +317,15 @@ TEST(TimeIntegralVsSteady, SeedColouredMirrorsCaustic) {
   // light (radius 0.25 instead of 0.1) so that path tracing, which finds the
   // caustic only by BSDF sampling through the ball onto the light, has a
   // standard error that makes the comparison sharp (a few % per block).
+  // No media: the reference is the steady `path` integrator
+  // (integrator-path.xml).
   Comparison c;
   c.scene = "seed-coloured-mirrors-caustic";
   c.common = {{"resolution", "16"}, {"height", "12"}, {"light_radius", "0.25"}};
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "256"}};
   c.beams = withBeamsDefaults({{"spp", "256"}});
-  c.steady = {{"integrator", "transient_path"}, {"spp", "512"}};
+  c.steady = {{"integrator", "path"}, {"spp", "512"}};
   c.runs = 8;
   compareWithSteady(c);
 }
@@ -332,7 +334,8 @@ TEST(TimeIntegralVsSteady, SeedGlassArmadillo) {
   // The glass figure (max_depth 16: long chains inside the glass). The
   // Stanford Armadillo beside the repository when present (not committed:
   // research-use licence), otherwise the generated fallback creature
-  // (tools/scenes/make_blob_mesh.py, level 3: 1280 triangles).
+  // (tools/scenes/make_blob_mesh.py, level 3: 1280 triangles). No media:
+  // the reference is the steady `path` integrator (integrator-path.xml).
   auto dir = scratchDir("integral-armadillo-mesh");
   auto armadillo = std::filesystem::path(FEMTO_SOURCE_DIR) / "../shared/meshes/armadillo.obj";
   std::filesystem::path mesh = armadillo;
@@ -349,7 +352,7 @@ TEST(TimeIntegralVsSteady, SeedGlassArmadillo) {
   c.window = {{"bins", "8"}, {"bin_width", "0.75"}};
   c.transientPath = {{"spp", "128"}};
   c.beams = withBeamsDefaults({{"spp", "128"}});
-  c.steady = {{"integrator", "transient_path"}, {"spp", "256"}};
+  c.steady = {{"integrator", "path"}, {"spp", "256"}};
   c.runs = 6;
   compareWithSteady(c);
 }
