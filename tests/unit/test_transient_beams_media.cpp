@@ -93,19 +93,25 @@ PassStatistics estimate(const Scene& scene, const Vec3f& d, const beams::BeamSet
   return stats;
 }
 
-}  // namespace
-
-TEST(TransientBeamsMedia, SingleScatteringConvergesToTheClosedFormAsTheRadiusShrinks) {
+/// Single scattering seen by one ray against its closed form: with radius
+/// 0.5 (16 passes of `widePhotons`) the kernel's bias shows (> 5 sigma), with
+/// 0.03 (`narrowPasses` of `narrowPhotons`) the estimate agrees within 5 sigma
+/// in total and in each of 12 OPL bins spanning `width` from the first arrival.
+void expectConvergenceAsTheRadiusShrinks(beams::VolumeEstimator estimator, int widePhotons, int narrowPhotons,
+                                         int narrowPasses, double width) {
   const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
   SingleScattering model{d};
   auto scene = singleScatteringScene(model);
-  const double tau0 = model.tau(0.0), width = 6.0;
+  const double tau0 = model.tau(0.0);
   const int bins = 12;
   const double exact = model.binIntegral(tau0, tau0 + 200.0);
-  PassStatistics wide = estimate(*scene, d, singleScatteringSettings(0.5f, 20000), 16, tau0, width / bins, bins);
-  PassStatistics narrow = estimate(*scene, d, singleScatteringSettings(0.03f, 60000), 12, tau0, width / bins, bins);
+  PassStatistics wide =
+      estimate(*scene, d, singleScatteringSettings(0.5f, widePhotons, estimator), 16, tau0, width / bins, bins);
+  PassStatistics narrow = estimate(*scene, d, singleScatteringSettings(0.03f, narrowPhotons, estimator), narrowPasses,
+                                   tau0, width / bins, bins);
   double wideError = std::abs(wide.total.mean() - exact), narrowError = std::abs(narrow.total.mean() - exact);
-  std::printf("exact %.6g; radius 0.5: %.6g +- %.2g; radius 0.03: %.6g +- %.2g\n", exact, wide.total.mean(),
+  std::printf("%s: exact %.6g; radius 0.5: %.6g +- %.2g; radius 0.03: %.6g +- %.2g\n",
+              estimator == beams::VolumeEstimator::Points ? "points" : "beams", exact, wide.total.mean(),
               wide.total.standardError(), narrow.total.mean(), narrow.total.standardError());
   EXPECT_LT(narrowError, wideError) << "the error falls with the radius";
   EXPECT_GT(wideError, 5.0 * wide.total.standardError()) << "the wide kernel's bias is visible";
@@ -116,35 +122,21 @@ TEST(TransientBeamsMedia, SingleScatteringConvergesToTheClosedFormAsTheRadiusShr
   }
 }
 
+}  // namespace
+
+TEST(TransientBeamsMedia, SingleScatteringConvergesToTheClosedFormAsTheRadiusShrinks) {
+  expectConvergenceAsTheRadiusShrinks(beams::VolumeEstimator::Beams, 20000, 60000, 12, 6.0);
+}
+
 TEST(TransientBeamsMedia, PhotonPointsConvergeToTheClosedFormAsTheRadiusShrinks) {
   // volume_estimator = points: the beam radiance estimate over photons at
-  // their scattering vertices (ray_point.h), the same closed form. Its 2D
-  // kernel blurs the in-scattered light across the ray: biased at r = 0.5,
-  // within 5 sigma (total and per OPL bin, one instant per photon) at 0.03.
-  // A point lands in one bin, so a bin's error bar needs hits in several
-  // passes: the bins span the first 3 OPL units of arrivals (over 99 % of the
-  // light), where each pass puts points in every bin; later, a bin may see
-  // none in 16 passes and have no error bar at all.
-  const Vec3f d = normalize(Vec3f(0.3f, 0.1f, 1.0f));
-  SingleScattering model{d};
-  auto scene = singleScatteringScene(model);
-  const double tau0 = model.tau(0.0), width = 3.0;
-  const int bins = 12;
-  const double exact = model.binIntegral(tau0, tau0 + 200.0);
-  const auto points = beams::VolumeEstimator::Points;
-  PassStatistics wide = estimate(*scene, d, singleScatteringSettings(0.5f, 20000, points), 16, tau0, width / bins, bins);
-  PassStatistics narrow =
-      estimate(*scene, d, singleScatteringSettings(0.03f, 200000, points), 16, tau0, width / bins, bins);
-  double wideError = std::abs(wide.total.mean() - exact), narrowError = std::abs(narrow.total.mean() - exact);
-  std::printf("points: exact %.6g; radius 0.5: %.6g +- %.2g; radius 0.03: %.6g +- %.2g\n", exact, wide.total.mean(),
-              wide.total.standardError(), narrow.total.mean(), narrow.total.standardError());
-  EXPECT_LT(narrowError, wideError) << "the error falls with the radius";
-  EXPECT_GT(wideError, 5.0 * wide.total.standardError()) << "the wide kernel's bias is visible";
-  EXPECT_LT(narrowError, 5.0 * narrow.total.standardError());
-  for (int b = 0; b < bins; ++b) {
-    double t0 = tau0 + width * b / bins, t1 = tau0 + width * (b + 1) / bins;
-    expectWithinErrorBars(narrow.bins[size_t(b)], model.binIntegral(t0, t1), 1e-7, str("bin ", b, " [", t0, ", ", t1, ")"));
-  }
+  // their scattering vertices (ray_point.h), the same closed form; its 2D
+  // kernel blurs the in-scattered light across the ray. Points are cheap:
+  // more photons. A point lands in one bin, so a bin's error bar needs hits
+  // in several passes: the bins span the first 3 OPL units of arrivals (over
+  // 99 % of the light), where each pass puts points in every bin; later, a
+  // bin may see none in 16 passes and have no error bar at all.
+  expectConvergenceAsTheRadiusShrinks(beams::VolumeEstimator::Points, 20000, 200000, 16, 3.0);
 }
 
 TEST(TransientBeamsMedia, WithoutObserverTimeOnlyTheLightsPathCounts) {
