@@ -13,8 +13,11 @@ the volume and of its time integral, raw and less the reference's own
 expected contribution), and the reference's file and error estimate. The
 reference (tools/compare/reference_volume.py) is cached under --cache-dir.
 
-Equal time: the time is the render time femto reports (photon passes
-included for transient_beams; loading the scene and writing outputs not).
+Equal time: by default the render time femto reports, wall clock (photon
+passes included for transient_beams; loading the scene and writing outputs
+not); --time cpu_seconds makes the femto processes' CPU times (user + system,
+all threads, loading and writing included: the same outputs for both) equal
+instead.
 transient_path's time is close to a + b·spp, so a pilot render at a few spp
 gives a first guess of the spp; if the render misses the target by more than
 --tolerance, the line through the two measured (spp, time) points gives the
@@ -41,7 +44,10 @@ def parse_args(argv):
     p.add_argument("--passes", type=int, default=16, help="transient_beams' budget")
     p.add_argument("--pilot-spp", type=int, default=16, help="transient_path's pilot render")
     p.add_argument("--tolerance", type=float, default=0.05, help="accepted relative time difference")
-    p.add_argument("--attempts", type=int, default=3, help="transient_path renders at most")
+    p.add_argument("--attempts", type=int, default=4, help="transient_path renders at most")
+    p.add_argument("--time", choices=["seconds", "cpu_seconds"], default="seconds",
+                   help="what is made equal: the render time femto reports (wall clock, default) or the CPU "
+                        "time of the femto process (user + system; steadier on a shared machine)")
     p.add_argument("--seed", type=int, default=1, help="seed of both test renders")
     p.add_argument("--reference-spp", type=int, default=2048, help="spp of each reference run")
     p.add_argument("--reference-runs", type=int, default=8, help="independent reference runs (at least 2)")
@@ -112,7 +118,7 @@ def remove_outputs(result):
 def equal_time_path(args, target):
     """transient_path rendered at the spp that takes `target` seconds."""
     pilot = render(args, "path_pilot", "transient_path", "spp", args.pilot_spp)
-    points = [(args.pilot_spp, pilot["seconds"])]
+    points = [(args.pilot_spp, pilot[args.time])]
     best = None
     for attempt in range(args.attempts):
         spp = next_spp(points, target)
@@ -120,19 +126,19 @@ def equal_time_path(args, target):
             break  # the line gives the same spp again: nothing to gain
         # Each attempt writes its own files; the closest is renamed path.* at the end.
         run = render(args, f"path_attempt{attempt}", "transient_path", "spp", spp)
-        points.append((spp, run["seconds"]))
-        if best is None or abs(run["seconds"] - target) < abs(best["seconds"] - target):
+        points.append((spp, run[args.time]))
+        if best is None or abs(run[args.time] - target) < abs(best[args.time] - target):
             best, worse = run, best
         else:
             worse = run
         if worse:
             remove_outputs(worse["file"])  # ~100 MB each at 128x128x512
-        if abs(run["seconds"] / target - 1) <= args.tolerance:
+        if abs(run[args.time] / target - 1) <= args.tolerance:
             break
     remove_outputs(pilot["file"])
     best["file"] = rename_outputs(best["file"], os.path.join(args.out, "path"))
-    best["pilot"] = dict(spp=args.pilot_spp, seconds=pilot["seconds"])
-    best["attempts"] = [dict(spp=spp, seconds=seconds) for spp, seconds in points[1:]]
+    best["pilot"] = dict(spp=args.pilot_spp, seconds=pilot[args.time])
+    best["attempts"] = [dict(spp=spp, seconds=seconds) for spp, seconds in points[1:]]  # args.time
     return best
 
 
@@ -161,13 +167,18 @@ def errors(args, ref, run):
 def captions(result):
     """The figure's row labels and the lines under it (fig1_equal_time.sh)."""
     path, beams, ref = result["path"], result["beams"], result["reference"]
+    cpu = result["equal"] == "cpu_seconds"
 
     def label(name, run):
-        return f"{name}, {run['budget']} {run['budget_param']}\n{run['seconds']:.1f} s, relMSE {run['relmse']:.2e}"
+        time = f"{run['cpu_seconds']:.1f} s CPU" if cpu else f"{run['seconds']:.1f} s"
+        return f"{name}, {run['budget']} {run['budget_param']}\n{time}, relMSE {run['relmse']:.2e}"
 
+    wall = (f"render time (wall clock) {path['seconds']:.1f} s and {beams['seconds']:.1f} s "
+            f"(path / beams {result['time_ratio']:.3f})")
+    cpu_time = (f"CPU time (user + system, 2 threads) {path['cpu_seconds']:.1f} s and {beams['cpu_seconds']:.1f} s "
+                f"(path / beams {result['cpu_ratio']:.3f})")
     note = [
-        f"equal render time: path tracing {path['seconds']:.1f} s, photon beams {beams['seconds']:.1f} s "
-        f"(path / beams {result['time_ratio']:.3f}; CPU {path['cpu_seconds']:.1f} s and {beams['cpu_seconds']:.1f} s)",
+        f"equal {cpu_time if cpu else wall} for path tracing and photon beams; {wall if cpu else cpu_time}",
         f"relMSE vs the reference, volume (time integral): path {path['relmse']:.2e} ({path['integral_relmse']:.2e}), "
         f"beams {beams['relmse']:.2e} ({beams['integral_relmse']:.2e}); beams / path {beams['relmse'] / path['relmse']:.2f}",
         f"the reference's own expected relMSE {ref['relmse']:.1e} ({ref['integral_relmse']:.1e}); less it: "
@@ -183,13 +194,14 @@ def main(argv=None):
     os.makedirs(args.out, exist_ok=True)
     ref = reference(args)  # first: cached after the first run, and the timed renders then follow each other
     beams = render(args, "beams", "transient_beams", "passes", args.passes)
-    path = equal_time_path(args, beams["seconds"])
+    path = equal_time_path(args, beams[args.time])
     for run in (beams, path):
         run.update(errors(args, ref, run))
         log(f"{run['integrator']}: relMSE {run['relmse']:.4g} (volume; {run['relmse_corrected']:.4g} less the "
             f"reference's), {run['integral_relmse']:.4g} (time integral; {run['integral_relmse_corrected']:.4g})")
     result = dict(scene=args.scene, defines=dict(args.defines), seed=args.seed, beams=beams, path=path,
-                  time_ratio=path["seconds"] / beams["seconds"], reference=ref)
+                  equal=args.time, time_ratio=path["seconds"] / beams["seconds"],
+                  cpu_ratio=path["cpu_seconds"] / beams["cpu_seconds"], reference=ref)
     result["captions"] = captions(result)
     log(result["captions"]["note"])
     with open(os.path.join(args.out, "equal_time.json"), "w") as f:

@@ -56,9 +56,6 @@ def main():
     parser.add_argument("--row-exposure", action="store_true", help="one exposure per row (frames, and the steady column) instead of per figure")
     parser.add_argument("--title", default="")
     parser.add_argument("--note", default="", help="text under the figure (e.g. which mesh); may have several lines")
-    parser.add_argument("--dpi", type=int, default=110, help="pixels per inch of the PNG (a frame is 1.8 in wide)")
-    parser.add_argument("--palette", action="store_true",
-                        help="store the PNG with a 256-colour palette: about 2.5 times smaller, for committed figures")
     args = parser.parse_args()
 
     rows = []
@@ -120,11 +117,7 @@ def main():
     if args.note:
         fig.text(0.5, 0.005, args.note, ha="center", fontsize=7)
     fig.tight_layout(rect=(0, note_height / height, 1, 1))
-    fig.savefig(args.output, dpi=args.dpi)
-    if args.palette:
-        from PIL import Image  # Debian python3-pil, which matplotlib depends on
-
-        Image.open(args.output).convert("RGB").quantize(256).save(args.output, optimize=True)
+    fig.savefig(args.output, dpi=110)
     print(f"wrote {args.output}")
 
 
