@@ -1,7 +1,7 @@
 #!/bin/sh
 # Seed figure 1: equal-time comparison on the fog Cornell box
 # (scenes/cornell-box-fog): transient path tracing vs transient photon beams
-# at the same render time, frames side by side with a long reference, and
+# at the same time (CPU or wall clock), frames side by side with a long reference, and
 # each one's error against it in the caption.
 #   out/fig1/fig1_equal_time.png   frames (rows: path, beams, reference) + steady column
 #   out/fig1/fig1_equal_time.gif   the three sequences side by side
@@ -55,9 +55,9 @@ threads=$THREADS
 machine="$model, $threads threads; commit $commit$dirty; load average $load_before before, $load_after after"
 echo "$machine"
 
-# Columns: the direct wavefront crossing the fog (+1.1 ... +1.8), the walls
-# lit (+2.3), the back wall and the light's reflection off it (+3.0), then
-# indirect light only (+4.0); the window starts at OPL 3.
+# Columns: the direct wavefront crossing the fog (+1.1, +1.4), reaching the
+# ceiling, walls and box tops (+1.8, +2.3), the back wall as a ring (+3.0),
+# then indirect light and multiple scattering (+4.0); the window starts at OPL 3.
 /usr/bin/python3 tools/figures/frame_strip.py "$OUT/fig1_equal_time.png" \
   "$(field "d['captions']['path']")=$OUT/path.npy@3" "$(field "d['captions']['beams']")=$OUT/beams.npy@3" \
   "$(field "d['captions']['reference']")=$reference@3" \
