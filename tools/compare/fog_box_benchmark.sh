@@ -20,7 +20,7 @@
 #            FOG_CHECK (transient_beams:passes=256; empty: no check),
 #            FOG_NO_BUILD=1 (use BUILD/bin/femto as it is).
 # transient_beams renders with its scene file's settings
-# (scenes/cornell-box-fog/integrator-transient_beams.xml: 32 camera samples
+# (scenes/cornell-box-fog/integrator-transient_beams.xml: 32 ldsampler camera samples
 # per pixel and 30000 photons per pass).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -74,8 +74,10 @@ first_seed=${seeds%% *}
   echo "4-spp render's CPU time); it steepens the curves' low end (slopes below −1), not the equal-time ratios."
   echo "${res}x${res} pixels, the window OPL 3 to 13.24. The dotted line has slope −1, the Monte Carlo rate."
   echo "\`transient_path\` is budgeted by samples per pixel, \`transient_beams\` by passes of its scene-file"
-  echo "settings (\`scenes/cornell-box-fog/integrator-transient_beams.xml\`: 32 camera samples per pixel,"
-  echo "30000 photons of which 3000 leave beams, a quarter of the camera segments gather beams)."
+  echo "settings (\`scenes/cornell-box-fog/integrator-transient_beams.xml\`: 32 camera samples per pixel"
+  echo "from \`ldsampler\`, 30000 photons of which 3000 leave beams, a quarter of the camera segments gather"
+  echo "beams); transient_path uses the \`independent\` sampler. Each integrator has the sampler that"
+  echo "measured best for it (table at the end of this section)."
   echo
   echo "**The reference's own error.** The spread of its $ref_seeds renders gives the variance of their mean"
   echo "per value and so its expected contribution to every relMSE measured against it"
@@ -148,6 +150,22 @@ if [ -n "$beams" ] && [ -n "$check" ]; then
     /usr/bin/python3 tools/compare/check_reference.py scenes/cornell-box-fog/scene.xml $common $fine \
       --reference-budget spp="$ref" --reference-seeds "$ref_seeds" --check "$check" --check-seeds 101,102 \
       --factors 1,4,16,1024 --femto "$femto" --cache-dir "$cache"
+  } >> "$section"
+fi
+if [ -n "$beams" ]; then
+  {
+    echo
+    echo "### Samplers on the fog Cornell box (1024 bins)"
+    echo
+    echo "Each integrator at one budget with each camera sampler (\`-D sampler=...\`; stratified rounds"
+    echo "32 spp up to 36, a square), seeds 1-3, by \`tools/compare/sampler_table.py\`. Efficiency ="
+    echo "1 / (relMSE × CPU s), relative to \`independent\`: the scene files use each integrator's best."
+    echo
+    # shellcheck disable=SC2086
+    /usr/bin/python3 tools/compare/sampler_table.py scenes/cornell-box-fog/scene.xml \
+      --integrator transient_path:spp=256 --integrator "transient_beams:passes=4" $common $fine \
+      --reference-budget spp="$ref" --reference-seeds "$ref_seeds" --femto "$femto" --cache-dir "$cache" \
+      --out-dir "$build/compare/samplers"
   } >> "$section"
 fi
 /usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md fog-box-speed-vs-error < "$section"
