@@ -20,6 +20,7 @@
 #include <femto/render/integrator.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/render/volumetric.h>
 
 namespace femto {
 
@@ -33,6 +34,11 @@ class DirectIntegrator final : public SamplingIntegrator {
       props.raise(props.has("bsdf_samples") ? "bsdf_samples" : "emitter_samples",
                   "emitter_samples and bsdf_samples cannot both be 0");
     hideEmitters_ = props.getBool("hide_emitters", false);
+  }
+
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override {
+    warnIfMediaIgnored(scene, "direct");
+    return SamplingIntegrator::render(scene, options);
   }
 
   Color3f Li(const Ray& cameraRay, const Scene& scene, Sampler& sampler) const override {

@@ -17,6 +17,7 @@
 #include <femto/render/integrator.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/render/volumetric.h>
 
 namespace femto {
 
@@ -28,6 +29,11 @@ class PathIntegrator final : public SamplingIntegrator {
         hideEmitters_(props.getBool("hide_emitters", false)) {
     if (maxDepth_ < -1) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth_));
     if (rrDepth_ <= 0) props.raise("rr_depth", str("must be at least 1, got ", rrDepth_));
+  }
+
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override {
+    warnIfMediaIgnored(scene, "path");
+    return SamplingIntegrator::render(scene, options);
   }
 
   Color3f Li(const Ray& cameraRay, const Scene& scene, Sampler& sampler) const override {

@@ -2,9 +2,12 @@
 
 #include <cmath>
 
+#include <femto/core/log.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/medium.h>
 #include <femto/render/scene.h>
+#include <femto/render/sensor.h>
+#include <femto/render/shape_group.h>
 
 namespace femto {
 namespace {
@@ -59,6 +62,23 @@ Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec
     ray = finite ? si.spawnRayTo(target) : si.spawnRay(ray.d);
   }
   return result;
+}
+
+bool sceneHasMedia(const Scene& scene) {
+  auto bounds = [](const Shape& shape) { return shape.interiorMedium() || shape.exteriorMedium(); };
+  for (const auto& shape : scene.shapes()) {
+    if (bounds(*shape)) return true;
+    if (auto group = dynamic_cast<const ShapeGroup*>(shape.get()))
+      for (const auto& child : group->shapes())
+        if (bounds(*child)) return true;
+  }
+  return scene.sensor().medium() != nullptr;
+}
+
+void warnIfMediaIgnored(const Scene& scene, const char* integrator) {
+  if (sceneHasMedia(scene))
+    logWarn(integrator, ": the scene has participating media, which this integrator ignores (surfaces only); "
+                        "render media with transient_path (Mitsuba's volpath loads as it) or transient_beams");
 }
 
 }  // namespace femto

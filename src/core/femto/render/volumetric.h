@@ -26,6 +26,15 @@ bool isPassThrough(const SurfaceInteraction& si);
 /// The same test on a shape's BSDF (nullptr: none).
 bool isPassThrough(const BSDF* bsdf);
 
+/// Does the scene hold participating media (a shape's interior or exterior,
+/// shapes of groups included, or the sensor's medium)? Surface-only
+/// integrators use it to say that they ignore them instead of silently
+/// rendering a scene without its fog.
+bool sceneHasMedia(const Scene& scene);
+/// For surface-only integrators (path, direct) before they render: a warning
+/// naming `integrator` when the scene has media, which it will not trace.
+void warnIfMediaIgnored(const Scene& scene, const char* integrator);
+
 /// What reaches a point along a connection (next-event estimation).
 struct Connection {
   Color3f transmittance{0.0f};  // zero when an opaque or refracting surface blocks it
