@@ -47,3 +47,25 @@ image.quantize(256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE).s
 print(f"wrote {sys.argv[2]}")
 PY
 }
+
+# sequence_gif NAME MERGE FIRST:END [--each-exposure] VOLUME...: the volumes side by side
+# (side_by_side_volume.py; each frame the mean of MERGE bins, so noise and
+# file size stay down), frames FIRST..END-1 of that merged sequence as
+# $OUT/NAME.gif through `femto frames --gif` (ffmpeg; one exposure for all).
+# --each-exposure: each volume at its own exposure (side_by_side_volume.py).
+# With DOCS set, a copy goes there when it is at most 1.5 MB.
+sequence_gif() {
+  name=$1 merge=$2 range=$3
+  shift 3
+  /usr/bin/python3 tools/figures/side_by_side_volume.py "$OUT/${name}_side_by_side.npy" "$@" --merge "$merge"
+  "$FEMTO" frames "$OUT/${name}_side_by_side.npy" -o "$OUT/${name}_frames" --bins "$range" --gif --fps 8
+  cp "$OUT/${name}_frames/sequence.gif" "$OUT/$name.gif"
+  echo "wrote $OUT/$name.gif"
+  [ -n "$DOCS" ] || return 0
+  size=$(wc -c < "$OUT/$name.gif")
+  if [ "$size" -le 1572864 ]; then
+    cp "$OUT/$name.gif" "$DOCS/" && echo "wrote $DOCS/$name.gif"
+  else
+    echo "$OUT/$name.gif is $size bytes, over 1.5 MB: not copied to $DOCS" >&2
+  fi
+}

@@ -70,12 +70,4 @@ publish "$OUT/fig1_equal_time.png"
 # The GIF: path | beams | reference, each frame the mean of BINS/64 bins
 # (OPL 0.16), from +0.96 to +6.08 after the window start (32 frames; the
 # path tracer's noise makes every frame expensive to store).
-merge=$((BINS / 64))
-/usr/bin/python3 tools/figures/side_by_side_volume.py "$OUT/side_by_side.npy" \
-  "$OUT/path.npy" "$OUT/beams.npy" "$reference" --merge "$merge"
-"$FEMTO" frames "$OUT/side_by_side.npy" -o "$OUT/side_by_side_frames" --bins 6:38 --gif --fps 8
-cp "$OUT/side_by_side_frames/sequence.gif" "$OUT/fig1_equal_time.gif"
-echo "wrote $OUT/fig1_equal_time.gif (left to right: path tracing, photon beams, reference)"
-if [ -n "$DOCS" ]; then
-  cp "$OUT/fig1_equal_time.gif" "$DOCS/" && echo "wrote $DOCS/fig1_equal_time.gif"
-fi
+sequence_gif fig1_equal_time $((BINS / 64)) 6:38 "$OUT/path.npy" "$OUT/beams.npy" "$reference"

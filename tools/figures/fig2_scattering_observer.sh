@@ -67,4 +67,8 @@ if wants transient_beams; then
     render "beams_multiple_$where" "$observer" "$start" -D integrator=transient_beams -D store=all "$@"
   done
   figure fig2_scattering_observer_beams.png "transient_beams (scene's integrator-transient_beams.xml)" beams_
+  # Animated, left to right: single and multiple scattering with observer
+  # time, then without (each frame the mean of 4 bins: 32 frames, ~1 MB).
+  sequence_gif fig2_scattering_observer_beams 4 0:$((BINS / 4)) "$OUT/beams_single_observer.npy" \
+    "$OUT/beams_multiple_observer.npy" "$OUT/beams_single_local.npy" "$OUT/beams_multiple_local.npy"
 fi

@@ -37,3 +37,8 @@ IFS='|'
   --bin-width 0.05 --times 1.6 2.2 2.7 3.1 3.5 4.0 5.9 --average 3 --row-exposure --steady \
   --title "Seed fig. 3: coloured mirrors and a glass-ball caustic (IOR 1.5); transient_path $SPP spp, transient_beams as in its integrator file"
 publish "$OUT/fig3_dirac_continuous.png"
+# Animated with transient_beams (when rendered), left to right: Dirac,
+# continuous, each at its own exposure (as the figure's rows).
+if wants transient_beams; then
+  sequence_gif fig3_dirac_continuous_beams 2 0:60 --each-exposure "$OUT/beams_delta.npy" "$OUT/beams_continuous.npy"
+fi

@@ -40,3 +40,7 @@ IFS='|'
   --title "Seed fig. 4: glass figure (IOR 1.5) under a Dirac pulse; transient_path $SPP spp, transient_beams as in its integrator file" \
   --note "$note"
 publish "$OUT/fig4_glass_armadillo.png"
+# Animated with transient_beams (when rendered).
+if wants transient_beams; then
+  sequence_gif fig4_glass_armadillo_beams 2 0:60 "$OUT/beams_armadillo.npy"
+fi

@@ -9,7 +9,10 @@ Every volume (height, width, bins, 3) must have the same height and bins.
 --merge K averages each run of K bins into one (bins must divide by K): fewer
 frames for a small GIF, and each frame the mean over its K bins, as
 frame_strip.py's --average calms single-bin noise. --gutter G puts G black
-columns between the volumes.
+columns between the volumes. --each-exposure scales every volume so that
+its own 99.5th percentile of lit luminance is 1 (a continuous source's
+running integral is far brighter than its Dirac sequence: one exposure for
+both would leave the Dirac side black), as frame_strip.py's --row-exposure.
 """
 import argparse
 
@@ -22,6 +25,14 @@ def merge_bins(volume, merge):
     if bins % merge:
         raise ValueError(f"{bins} bins are not a multiple of --merge {merge}")
     return np.asarray(volume, dtype=np.float32).reshape(height, width, bins // merge, merge, channels).mean(axis=3)
+
+
+def unit_exposure(volume, percentile=99.5):
+    """`volume` scaled so the given percentile of its nonzero luminance is 1
+    (unchanged when it is all black)."""
+    luminance = volume @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+    lit = luminance[luminance > 0]
+    return volume / np.percentile(lit, percentile) if lit.size else volume
 
 
 def side_by_side(volumes, merge=1, gutter=2):
@@ -43,9 +54,13 @@ def main():
     parser.add_argument("volumes", nargs="+", help=".npy volumes, left to right")
     parser.add_argument("--merge", type=int, default=1, help="average runs of K bins")
     parser.add_argument("--gutter", type=int, default=2, help="black columns between volumes")
+    parser.add_argument("--each-exposure", action="store_true", help="scale each volume to its own exposure")
     args = parser.parse_args()
     try:
-        row = side_by_side([np.load(p, mmap_mode="r") for p in args.volumes], args.merge, args.gutter)
+        volumes = [np.load(p, mmap_mode="r") for p in args.volumes]
+        if args.each_exposure:
+            volumes = [unit_exposure(np.asarray(v, dtype=np.float32)) for v in volumes]
+        row = side_by_side(volumes, args.merge, args.gutter)
     except ValueError as e:
         raise SystemExit(f"side_by_side_volume: {' '.join(args.volumes)}: {e}")
     np.save(args.output, row)

@@ -60,6 +60,15 @@ class SideBySide(unittest.TestCase):
         with self.assertRaises(ValueError):
             sbs.side_by_side([np.zeros((3, 4, 6, 3))], merge=4)
 
+    def test_unit_exposure_puts_the_percentile_at_one(self):
+        rng = np.random.default_rng(3)
+        v = np.zeros((4, 5, 10, 3), dtype=np.float32)
+        v[:2] = rng.random((2, 5, 10, 3), dtype=np.float32) * 50.0  # half the volume black
+        scaled = sbs.unit_exposure(v)
+        lum = scaled @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+        self.assertAlmostEqual(float(np.percentile(lum[lum > 0], 99.5)), 1.0, places=5)
+        np.testing.assert_array_equal(sbs.unit_exposure(np.zeros((2, 2, 2, 3), np.float32)), 0.0)
+
 
 if __name__ == "__main__":
     unittest.main()
