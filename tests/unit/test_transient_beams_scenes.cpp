@@ -148,12 +148,9 @@ TEST(TransientBeamsScenes, SpotAndProjectorPhotonsAgreeWithTransientPath) {
   expectBeamsAgreeWithPath(s, "spot");
 }
 
-TEST(TransientBeamsScenes, DirectionalLightPhotonsAgreeWithTransientPath) {
-  // A fog cube (index-matched boundary) on a floor, lit by a directional
-  // light and seen from outside. Light from infinity has no finite path:
-  // both integrators start its time at the outermost surface the light
-  // crosses (transient_path's next-event estimation counts the shadow ray
-  // up to its last boundary; photons start their OPL at their first surface).
+/// A fog cube (index-matched boundary) on a floor, seen from outside, lit by
+/// `emitter` (an emitter at infinity).
+BeamsCase fogCubeOnAFloor(const std::string& emitter) {
   BeamsCase s;
   s.room = s.foggyRoom = false;
   s.sensor = R"(<transform name="to_world"><lookat origin="0.5, 1.5, 4" target="0, -0.3, 0" up="0, 1, 0"/></transform>)";
@@ -161,22 +158,24 @@ TEST(TransientBeamsScenes, DirectionalLightPhotonsAgreeWithTransientPath) {
   <shape type="cube"><ref name="interior" id="fog"/></shape>
   <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/>
       <translate y="-1.5"/></transform><bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
-  <emitter type="directional"><vector name="direction" x="0.4" y="-1" z="-0.3"/>
+  )", emitter);
+  return s;
+}
+
+TEST(TransientBeamsScenes, DirectionalLightPhotonsAgreeWithTransientPath) {
+  // Light from infinity has no finite path: both integrators start its time
+  // at the outermost surface the light crosses (transient_path's next-event
+  // estimation counts the shadow ray up to its last boundary; photons start
+  // their OPL at their first surface).
+  BeamsCase s = fogCubeOnAFloor(R"(<emitter type="directional"><vector name="direction" x="0.4" y="-1" z="-0.3"/>
     <float name="irradiance" value="2"/></emitter>)");
   expectBeamsAgreeWithPath(s, "directional");
 }
 
 TEST(TransientBeamsScenes, ConstantEnvironmentPhotonsAgreeWithTransientPath) {
-  // The directional light's scene under a uniform sky instead: photons from
-  // every direction (the same clock rule), the sky seen behind the cube.
-  BeamsCase s;
-  s.room = s.foggyRoom = false;
-  s.sensor = R"(<transform name="to_world"><lookat origin="0.5, 1.5, 4" target="0, -0.3, 0" up="0, 1, 0"/></transform>)";
-  s.content = str(kFog, R"(
-  <shape type="cube"><ref name="interior" id="fog"/></shape>
-  <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/>
-      <translate y="-1.5"/></transform><bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
-  <emitter type="constant"><rgb name="radiance" value="0.5, 0.6, 0.7"/></emitter>)");
+  // The same scene under a uniform sky instead: photons from every direction
+  // (the same clock rule), the sky seen behind the cube.
+  BeamsCase s = fogCubeOnAFloor(R"(<emitter type="constant"><rgb name="radiance" value="0.5, 0.6, 0.7"/></emitter>)");
   s.beamSpp = 8;  // the floor's next-event estimates dominate the noise
   s.runs = 8;
   expectBeamsAgreeWithPath(s, "constant");

@@ -107,7 +107,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except render_runs.RunError as e:
-        sys.exit(f"error: {e}")
+    render_runs.run_cli(main)

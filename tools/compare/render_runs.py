@@ -8,6 +8,7 @@ import re
 import resource
 import shutil
 import subprocess
+import sys
 import time
 
 SUMMARY = re.compile(r"^rendered (.+) in ([0-9.]+) s \(", re.M)
@@ -107,3 +108,12 @@ def cached_reference(femto, scene, defines, integrator, param, budget, seed, thr
         json.dump(meta, f, indent=2)
     log(f"reference: done in {seconds:.1f} s")
     return path
+
+
+def run_cli(main):
+    """Exit with `main(sys.argv[1:])`'s status; a failed femto run ends the
+    tool with its one-line error instead of a traceback."""
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except RunError as e:
+        sys.exit(f"error: {e}")
