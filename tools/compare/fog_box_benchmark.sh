@@ -16,7 +16,7 @@
 # (FOG_CHECK, 256 passes), then ~2 min per seed and bin count.
 # Overrides: FOG_RESOLUTION (64), FOG_SPP (4,...,256), FOG_REFERENCE_SPP,
 #            FOG_REFERENCE_SEEDS, FOG_PASSES (transient_beams budgets, 1,2,4,8),
-#            FOG_SEEDS (seeds of the budget renders, "1 2 3"; the plots show the first),
+#            FOG_SEEDS (seeds of the budget renders, "1 2 3 4 5"; the plots show the first),
 #            FOG_CHECK (transient_beams:passes=256; empty: no check),
 #            FOG_NO_BUILD=1 (use BUILD/bin/femto as it is).
 # transient_beams renders with its scene file's settings
@@ -34,7 +34,7 @@ femto="$build/bin/femto"
 res=${FOG_RESOLUTION:-64}
 ref=${FOG_REFERENCE_SPP:-8192}
 ref_seeds=${FOG_REFERENCE_SEEDS:-8}
-seeds=${FOG_SEEDS:-1 2 3}
+seeds=${FOG_SEEDS:-1 2 3 4 5}
 check=${FOG_CHECK-transient_beams:passes=256}
 cache="$build/compare-cache"
 # Every render, reference included: no per-bin EXRs (their writing would be
