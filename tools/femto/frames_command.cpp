@@ -14,6 +14,7 @@
 #include <femto/render/volume_info.h>
 #include <femto/view/contact_sheet.h>
 #include <femto/view/display.h>
+#include <femto/view/frame_label.h>
 #include <femto/view/running_integral.h>
 #include <femto/view/volume_scan.h>
 
@@ -34,6 +35,7 @@ struct FramesSettings {
   std::string bins;
   int every = 1;
   bool runningIntegral = false;
+  bool label = false;
   bool contactSheet = false;
   int sheetCount = 16;
   int sheetColumns = 4;
@@ -74,6 +76,10 @@ int writeFramePngs(const FramesSettings& settings) {
     sheet = std::make_unique<ContactSheet>(volume.width(), volume.height(), int(sheetFramesShown.size()),
                                            settings.sheetColumns, 2);
 
+  // --label: each frame's bin centre in OPL from the sidecar, else its index.
+  const std::optional<VolumeInfo> info = readVolumeInfo(settings.volume);
+  auto labelOf = [&](int bin) { return info ? binLabel(info->grid, bin) : str("bin ", bin); };
+
   // The running integral starts at bin 0 whatever is shown, so a frame's
   // values do not depend on --bins.
   std::vector<double> sum;
@@ -85,14 +91,15 @@ int writeFramePngs(const FramesSettings& settings) {
     tbb::parallel_for(0, count, [&](int k) {
       const int bin = b0 + k;
       if (bin < first || (bin - first) % settings.every != 0) return;
-      const Bitmap image = displayImage(frames[size_t(k)], exposure, settings.exposure.falseColour);
+      Bitmap image = displayImage(frames[size_t(k)], exposure, settings.exposure.falseColour);
+      if (settings.label) drawLabel(image, labelOf(bin));
       writePNG(dir / frameFileName(bin, volume.bins(), ".png"), image);
       if (int index = sheetIndex[size_t((bin - first) / settings.every)]; sheet && index >= 0) sheet->place(index, image);
     });
   }
   std::cout << "wrote " << shown << " frames (bins " << first << " to " << end - 1;
   if (settings.every > 1) std::cout << ", every " << settings.every;
-  if (std::optional<VolumeInfo> info = readVolumeInfo(settings.volume))
+  if (info)
     std::cout << ", OPL " << info->grid.start + first * info->grid.binWidth << " to "
               << info->grid.start + end * info->grid.binWidth;
   std::cout << (cumulative ? ", running integral" : "") << ") to " << dir.string() << '\n';
@@ -127,6 +134,8 @@ Command addFramesCommand(CLI::App& app) {
       ->check(PositiveInteger);
   command->add_flag("--running-integral", settings->runningIntegral,
                     "Show the running integral over time: the view of a continuous source switched on at time 0");
+  command->add_flag("--label", settings->label,
+                    "Burn each frame's time into its top-left corner (bin centre in OPL from the volume's sidecar)");
   command->add_flag("--contact-sheet", settings->contactSheet, "Also write contact_sheet.png (evenly spaced frames)");
   command->add_option("--sheet-frames", settings->sheetCount, "Frames on the contact sheet (default 16)")
       ->type_name("N")

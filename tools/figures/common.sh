@@ -51,14 +51,18 @@ PY
 # sequence_gif NAME MERGE FIRST:END [--each-exposure] VOLUME...: the volumes side by side
 # (side_by_side_volume.py; each frame the mean of MERGE bins, so noise and
 # file size stay down), frames FIRST..END-1 of that merged sequence as
-# $OUT/NAME.gif through `femto frames --gif` (ffmpeg; one exposure for all).
+# $OUT/NAME.gif through `femto frames --gif` (ffmpeg; one exposure for all;
+# each frame stamped with its OPL when the volumes share one window).
 # --each-exposure: each volume at its own exposure (side_by_side_volume.py).
 # With DOCS set, a copy goes there when it is at most 1.5 MB.
 sequence_gif() {
   name=$1 merge=$2 range=$3
   shift 3
   /usr/bin/python3 tools/figures/side_by_side_volume.py "$OUT/${name}_side_by_side.npy" "$@" --merge "$merge"
-  "$FEMTO" frames "$OUT/${name}_side_by_side.npy" -o "$OUT/${name}_frames" --bins "$range" --gif --fps 8
+  # Time stamps when the volumes share one window (side_by_side_volume.py then writes a sidecar).
+  label=
+  [ -f "$OUT/${name}_side_by_side.json" ] && label=--label
+  "$FEMTO" frames "$OUT/${name}_side_by_side.npy" -o "$OUT/${name}_frames" --bins "$range" --gif --fps 8 $label
   cp "$OUT/${name}_frames/sequence.gif" "$OUT/$name.gif"
   echo "wrote $OUT/$name.gif"
   [ -n "$DOCS" ] || return 0

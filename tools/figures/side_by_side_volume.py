@@ -13,8 +13,12 @@ columns between the volumes. --each-exposure scales every volume so that
 its own 99.5th percentile of lit luminance is 1 (a continuous source's
 running integral is far brighter than its Dirac sequence: one exposure for
 both would leave the Dirac side black), as frame_strip.py's --row-exposure.
+When all inputs' sidecars (<stem>.json) give the same window, the output gets
+one too (bins merged), so `femto frames --label` can stamp frames with OPL.
 """
 import argparse
+import json
+import os
 
 import numpy as np
 
@@ -48,6 +52,28 @@ def side_by_side(volumes, merge=1, gutter=2):
     return np.concatenate(row, axis=1)
 
 
+def sidecar(volume_paths, row, merge):
+    """The sidecar (docs/transient-film.md) of the side-by-side volume `row`
+    when every input's says the same window (then `femto frames --label`
+    can stamp its frames with OPL), else None."""
+    windows = []
+    for path in volume_paths:
+        info_path = os.path.splitext(path)[0] + ".json"
+        if not os.path.exists(info_path):
+            return None
+        with open(info_path) as f:
+            info = json.load(f)
+        windows.append((info["start_opl"], info["bin_width_opl"]))
+    if len(set(windows)) != 1:
+        return None
+    start, width = windows[0]
+    height, total_width, bins, _ = row.shape
+    return {"format": "femto transient volume", "version": 1, "width": total_width, "height": height, "bins": bins,
+            "time_unit": "opl", "start_opl": start, "bin_width_opl": width * merge,
+            "end_opl": start + width * merge * bins, "film_width": total_width, "film_height": height,
+            "crop": [0, 0, total_width, height], "time_filter": "box"}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("output", help=".npy to write")
@@ -65,6 +91,13 @@ def main():
         raise SystemExit(f"side_by_side_volume: {' '.join(args.volumes)}: {e}")
     np.save(args.output, row)
     print(f"wrote {args.output}")
+    info = sidecar(args.volumes, row, args.merge)
+    info_path = os.path.splitext(args.output)[0] + ".json"
+    if info:
+        with open(info_path, "w") as f:
+            json.dump(info, f, indent=2)
+    elif os.path.exists(info_path):
+        os.remove(info_path)  # a stale one would label the frames wrongly
 
 
 if __name__ == "__main__":

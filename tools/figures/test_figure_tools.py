@@ -69,6 +69,21 @@ class SideBySide(unittest.TestCase):
         self.assertAlmostEqual(float(np.percentile(lum[lum > 0], 99.5)), 1.0, places=5)
         np.testing.assert_array_equal(sbs.unit_exposure(np.zeros((2, 2, 2, 3), np.float32)), 0.0)
 
+    def test_sidecar_only_for_one_shared_window(self):
+        import json
+        with tempfile.TemporaryDirectory() as d:
+            paths = [os.path.join(d, f"v{i}.npy") for i in range(2)]
+            for i, p in enumerate(paths):
+                with open(p[:-4] + ".json", "w") as f:
+                    json.dump({"start_opl": 3.0, "bin_width_opl": 0.25}, f)
+            row = np.zeros((4, 11, 6, 3), np.float32)
+            info = sbs.sidecar(paths, row, 2)
+            self.assertEqual((info["width"], info["height"], info["bins"]), (11, 4, 6))
+            self.assertEqual((info["start_opl"], info["bin_width_opl"], info["end_opl"]), (3.0, 0.5, 6.0))
+            with open(paths[1][:-4] + ".json", "w") as f:
+                json.dump({"start_opl": 0.0, "bin_width_opl": 0.25}, f)
+            self.assertIsNone(sbs.sidecar(paths, row, 2))  # different windows: no time stamps
+
 
 if __name__ == "__main__":
     unittest.main()
