@@ -129,6 +129,48 @@ TEST(TransientView, RunningIntegralIsTheCumulativeSumOverBins) {
   EXPECT_THROW(writeRunningIntegral(volume, in, in), Error);
 }
 
+TEST(TransientView, RunningIntegralStartsFromTheLightBeforeTheWindow) {
+  // A continuous render's bins hold the light that arrived before the window
+  // too (a step that started earlier fills every bin): so does the running
+  // integral of a Dirac render, from <stem>_before.exr when there is one.
+  const fs::path in = testDir() / "with_before.npy", out = testDir() / "with_before_integral.npy";
+  const std::vector<float> data = writeRandomVolume(in, 11);
+  const NpyVolume volume = NpyVolume::open(in);
+  EXPECT_FALSE(readBeforeImage(in, W, H).has_value());
+  Bitmap before(W, H, 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (int c = 0; c < 3; ++c) before.pixel(x, y)[c] = float(1 + x + 10 * y + 100 * c);
+  writeEXR(testDir() / "with_before_before.exr", before);
+  const std::optional<Bitmap> read = readBeforeImage(in, W, H);
+  ASSERT_TRUE(read.has_value());
+  writeRunningIntegral(volume, in, out, &*read);
+  const NpyVolume integral = NpyVolume::open(out);
+  std::vector<float> pixel(size_t(Bins) * 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      integral.readPixels(y, x, 1, pixel.data());
+      for (int c = 0; c < 3; ++c) {
+        double sum = before.pixel(x, y)[c];
+        for (int b = 0; b < Bins; ++b) {
+          sum += data[((size_t(y) * W + x) * Bins + b) * 3 + c];
+          EXPECT_NEAR(pixel[size_t(b) * 3 + c], sum, 1e-6 * (1 + sum));
+        }
+      }
+    }
+  // The luminance histogram for --running-integral's exposure sees the offset.
+  EXPECT_GT(volumeLuminances(volume, 0, Bins, true, &*read).percentile(50.0),
+            volumeLuminances(volume, 0, Bins, true).percentile(50.0));
+  // A before image of another size is refused, naming it.
+  writeEXR(testDir() / "with_before_before.exr", Bitmap(W + 1, H, 3));
+  try {
+    readBeforeImage(in, W, H);
+    ADD_FAILURE() << "no error for a before image of the wrong size";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("with_before_before.exr"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TransientView, PercentileOfPositiveLuminancesWithinABucket) {
   LuminanceHistogram histogram;
   for (int i = 1; i <= 1000; ++i) histogram.add(float(i));

@@ -57,8 +57,11 @@ int writeFramePngs(const FramesSettings& settings) {
   fs::path ffmpeg;
   if (settings.gif || settings.mp4) ffmpeg = findFfmpeg(settings.gif ? "--gif" : "--mp4");  // fail before the work
   const bool cumulative = settings.runningIntegral;
-  const float exposure =
-      resolveExposure(settings.exposure, [&] { return volumeLuminances(volume, first, end, cumulative); });
+  // The running integral starts from the light that arrived before the window.
+  std::optional<Bitmap> before;
+  if (cumulative) before = readBeforeImage(settings.volume, volume.width(), volume.height());
+  const float exposure = resolveExposure(
+      settings.exposure, [&] { return volumeLuminances(volume, first, end, cumulative, before ? &*before : nullptr); });
 
   const fs::path dir = outputDir(settings);
   std::error_code ec;
@@ -83,6 +86,12 @@ int writeFramePngs(const FramesSettings& settings) {
   // The running integral starts at bin 0 whatever is shown, so a frame's
   // values do not depend on --bins.
   std::vector<double> sum;
+  if (before) {
+    sum.resize(size_t(volume.width()) * volume.height() * 3);
+    for (int y = 0; y < volume.height(); ++y)
+      for (int x = 0; x < volume.width(); ++x)
+        for (int c = 0; c < 3; ++c) sum[(size_t(y) * volume.width() + x) * 3 + c] = before->pixel(x, y)[c];
+  }
   const int batch = framesPerBatch(volume, VolumeReadBudgetBytes);
   for (int b0 = cumulative ? 0 : first; b0 < end; b0 += batch) {
     const int count = std::min(batch, end - b0);
@@ -102,7 +111,8 @@ int writeFramePngs(const FramesSettings& settings) {
   if (info)
     std::cout << ", OPL " << info->grid.start + first * info->grid.binWidth << " to "
               << info->grid.start + end * info->grid.binWidth;
-  std::cout << (cumulative ? ", running integral" : "") << ") to " << dir.string() << '\n';
+  std::cout << (cumulative ? (before ? ", running integral from the light before the window" : ", running integral") : "")
+            << ") to " << dir.string() << '\n';
   if (sheet) {
     writePNG(dir / "contact_sheet.png", sheet->image());
     std::cout << "wrote " << (dir / "contact_sheet.png").string() << '\n';

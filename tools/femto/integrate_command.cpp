@@ -27,10 +27,13 @@ int integrate(const IntegrateSettings& settings) {
     const fs::path input(settings.volume);
     output = input.parent_path() / (input.stem().string() + "_integral.npy");
   }
-  writeRunningIntegral(volume, settings.volume, output);
+  // From the light that arrived before the window (<stem>_before.exr), as a continuous render's bins are.
+  const std::optional<Bitmap> before = readBeforeImage(settings.volume, volume.width(), volume.height());
+  writeRunningIntegral(volume, settings.volume, output, before ? &*before : nullptr);
   // Same window and pixels: the sidecar lets plots and `femto compare` use it.
   if (std::optional<VolumeInfo> info = readVolumeInfo(settings.volume)) writeVolumeInfo(volumeInfoPath(output), *info);
-  std::cout << "wrote " << output.string() << " (running integral over " << volume.bins() << " bins)\n";
+  std::cout << "wrote " << output.string() << " (running integral over " << volume.bins() << " bins"
+            << (before ? ", from the light before the window" : "") << ")\n";
   return 0;
 }
 

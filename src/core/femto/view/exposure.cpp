@@ -33,16 +33,17 @@ float LuminanceHistogram::percentile(double percent) const {
   return float(std::exp2(double(MaxExponent)));  // unreachable: below == count_ >= rank
 }
 
-LuminanceHistogram volumeLuminances(const NpyVolume& volume, int binBegin, int binEnd, bool cumulative) {
+LuminanceHistogram volumeLuminances(const NpyVolume& volume, int binBegin, int binEnd, bool cumulative,
+                                    const Bitmap* before) {
   LuminanceHistogram histogram;
   const int bins = volume.bins();
   std::vector<float> sums;
-  forEachPixelRun(volume, VolumeReadBudgetBytes, [&](int, int, int count, const float* data) {
+  forEachPixelRun(volume, VolumeReadBudgetBytes, [&](int y, int x, int count, const float* data) {
     for (int p = 0; p < count; ++p) {
       const float* pixel = data + size_t(p) * bins * 3;
       if (cumulative) {
         sums.resize(size_t(bins) * 3);
-        runningIntegral(pixel, bins, sums.data());
+        runningIntegral(pixel, bins, sums.data(), before ? before->pixel(x + p, y) : nullptr);
         pixel = sums.data();
       }
       for (int b = binBegin; b < binEnd; ++b) histogram.add(luminanceOf(pixel + size_t(b) * 3));

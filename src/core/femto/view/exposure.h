@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 
+#include <femto/image/image_io.h>
 #include <femto/render/npy_volume.h>
 
 namespace femto {
@@ -39,8 +40,10 @@ class LuminanceHistogram {
 
 /// Luminance histogram of bins [binBegin, binEnd) of `volume`, read with
 /// bounded memory. `cumulative`: of the running integral over time instead
-/// (see running_integral.h), summed from bin 0.
-LuminanceHistogram volumeLuminances(const NpyVolume& volume, int binBegin, int binEnd, bool cumulative);
+/// (see running_integral.h), summed from bin 0 on top of `before` (the light
+/// that arrived before the window) when given.
+LuminanceHistogram volumeLuminances(const NpyVolume& volume, int binBegin, int binEnd, bool cumulative,
+                                    const Bitmap* before = nullptr);
 
 /// The exposure, in stops (as writePNG takes it), that maps `white` to 1;
 /// 0 when `white` is not positive (an all-black volume).

@@ -7,8 +7,10 @@
 
 namespace femto {
 
-void runningIntegral(const float* in, int bins, float* out) {
+void runningIntegral(const float* in, int bins, float* out, const float* start) {
   double sum[3] = {0, 0, 0};
+  if (start)
+    for (int c = 0; c < 3; ++c) sum[c] = start[c];
   for (int b = 0; b < bins; ++b)
     for (int c = 0; c < 3; ++c) out[size_t(b) * 3 + c] = float(sum[c] += double(in[size_t(b) * 3 + c]));
 }
@@ -20,7 +22,18 @@ void accumulateFrames(std::vector<Bitmap>& frames, std::vector<double>& sum) {
   }
 }
 
-void writeRunningIntegral(const NpyVolume& in, const std::filesystem::path& inPath, const std::filesystem::path& out) {
+std::optional<Bitmap> readBeforeImage(const std::filesystem::path& volume, int width, int height) {
+  std::filesystem::path file = volume.parent_path() / (volume.stem().string() + "_before.exr");
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  Bitmap image = readImage(file);
+  if (image.width != width || image.height != height || image.channels < 3)
+    throw Error(str("\"", file.string(), "\" is ", image.width, "x", image.height, " with ", image.channels,
+                    " channels; the volume \"", volume.string(), "\" needs ", width, "x", height, " RGB"));
+  return image;
+}
+
+void writeRunningIntegral(const NpyVolume& in, const std::filesystem::path& inPath, const std::filesystem::path& out,
+                          const Bitmap* before) {
   std::error_code ec;
   if (std::filesystem::equivalent(inPath, out, ec))
     throw Error(str("the running integral would overwrite its input \"", inPath.string(), "\": choose another output"));
@@ -31,7 +44,8 @@ void writeRunningIntegral(const NpyVolume& in, const std::filesystem::path& inPa
     forEachPixelRun(in, VolumeReadBudgetBytes, [&](int y, int x, int count, const float* data) {
       sums.resize(size_t(count) * pixelFloats);
       for (int p = 0; p < count; ++p)
-        runningIntegral(data + size_t(p) * pixelFloats, in.bins(), sums.data() + size_t(p) * pixelFloats);
+        runningIntegral(data + size_t(p) * pixelFloats, in.bins(), sums.data() + size_t(p) * pixelFloats,
+                        before ? before->pixel(x + p, y) : nullptr);
       result.writePixels(y, x, count, sums.data());
     });
   });
