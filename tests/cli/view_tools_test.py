@@ -102,6 +102,16 @@ check(streak.shape[:2] == (BINS, W), f"streak PNG has shape {streak.shape}, expe
 lit = np.argwhere(streak[:, :, :3].max(axis=2) > 0).tolist()
 check(lit == [[HOT_BIN, HOT_X]], f"streak lit at (bin, x) {lit}")
 
+# Column streak: bins across, height down, the hot value at (bin, y); another column is black.
+stem = os.path.join(WORK, "streak_col")
+run("streak", volume_path, "--column", str(HOT_X), "-o", stem, "--exposure", "0")
+streak = png(stem + ".png")
+check(streak.shape[:2] == (H, BINS), f"column streak PNG has shape {streak.shape}, expected ({H}, {BINS})")
+lit = np.argwhere(streak[:, :, :3].max(axis=2) > 0).tolist()
+check(lit == [[HOT_Y, HOT_BIN]], f"column streak lit at (y, bin) {lit}")
+run("streak", volume_path, "--column", str((HOT_X + 1) % W), "-o", stem, "--exposure", "0")
+check(png(stem + ".png")[:, :, :3].max() == 0, "another column's streak is not black")
+
 # Running integral volume = numpy's cumulative sum.
 integral_path = os.path.join(WORK, "hot_integral.npy")
 run("integrate", volume_path, "-o", integral_path)
@@ -147,6 +157,7 @@ with open(text_path, "w") as f:
     f.write("hello\n")
 for args, fragment in [
     (("streak", volume_path, "--row", str(H)), f"--row {H} is outside the volume, whose rows are 0 to {H - 1}"),
+    (("streak", volume_path, "--column", str(W)), f"--column {W} is outside the volume, whose columns are 0 to {W - 1}"),
     (("frames", float64_path), "is not a float32 C-order (height, width, bins, 3) volume"),
     (("frames", text_path), "is not a version 1 .npy file"),
     (("frames", volume_path, "--bins", "5:3"), "--bins 5:3 selects no bins"),

@@ -1,6 +1,7 @@
 #include <femto/view/streak.h>
 
 #include <algorithm>
+#include <vector>
 
 #include <femto/core/error.h>
 #include <femto/view/volume_scan.h>
@@ -20,6 +21,19 @@ Bitmap streakImage(const NpyVolume& volume, int row) {
           for (int b = 0; b < bins; ++b) std::copy_n(data + size_t(p) * pixelFloats + size_t(b) * 3, 3, streak.pixel(x0 + p, b));
       },
       row, row + 1);
+  return streak;
+}
+
+Bitmap streakImageColumn(const NpyVolume& volume, int column) {
+  const int h = volume.height(), bins = volume.bins();
+  if (column < 0 || column >= volume.width())
+    throw Error(str("column ", column, " is outside the volume (columns 0 to ", volume.width() - 1, ")"));
+  Bitmap streak(bins, h, 3);
+  std::vector<float> pixel(size_t(bins) * 3);
+  for (int y = 0; y < h; ++y) {
+    volume.readPixels(y, column, 1, pixel.data());
+    for (int b = 0; b < bins; ++b) std::copy_n(&pixel[size_t(b) * 3], 3, streak.pixel(b, y));
+  }
   return streak;
 }
 
