@@ -1,11 +1,12 @@
 # femto quick start:  `make render` renders the default scene, `make test` runs the tests.
-# Both install missing Debian packages, configure and build first.
+# Both install missing Debian packages, configure and build first (render: only
+# the CLI and the plugins; test: everything).
 BUILD ?= build
 SCENE ?= scenes/cornell-box/scene.xml
 OUT ?= out/cornell-box.exr
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps configure build render test clean
+.PHONY: all deps configure build build-render render test clean
 
 all: build
 
@@ -20,7 +21,11 @@ configure: deps $(BUILD)/build.ninja
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-render: build
+# Only the CLI and the plugins: the tests are built by `make test`.
+build-render: configure
+	cmake --build $(BUILD) -j $(JOBS) --target femto_render
+
+render: build-render
 	$(BUILD)/bin/femto render $(SCENE) -o $(OUT)
 
 test: build

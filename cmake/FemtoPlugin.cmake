@@ -19,6 +19,8 @@ function(femto_add_plugin name)
   target_link_options(${name} PRIVATE LINKER:--no-undefined)
   if(DEFINED FEMTO_PLUGIN_OUTPUT_DIR)
     set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${FEMTO_PLUGIN_OUTPUT_DIR})
+    # In-tree: `femto_render` (make render) builds exactly these and the CLI.
+    set_property(GLOBAL APPEND PROPERTY FEMTO_PLUGIN_TARGETS ${name})
   endif()
   if(DEFINED FEMTO_PLUGIN_INSTALL_DIR)
     install(TARGETS ${name} LIBRARY DESTINATION ${FEMTO_PLUGIN_INSTALL_DIR})
