@@ -26,7 +26,12 @@
 #include <femto/core/error.h>
 #include <femto/image/image_io.h>
 
+#include "run_femto.h"
+
 namespace fs = std::filesystem;
+using femto::scenetest::quoted;
+using femto::scenetest::run;
+using femto::scenetest::RunResult;
 
 namespace {
 
@@ -70,25 +75,6 @@ std::vector<SceneEntry> discoverScenes() {
   }
   return scenes;
 }
-
-struct RunResult {
-  int exitCode = -1;
-  std::string output;
-};
-
-RunResult run(const std::string& command) {
-  RunResult r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
-  int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 class SharedScene : public ::testing::TestWithParam<SceneEntry> {};
 

@@ -16,6 +16,9 @@
 // | name         | type       | default | meaning                            |
 // |--------------|------------|---------|------------------------------------|
 // | (integrator) | integrator | —       | one or more nested integrators     |
+//
+// A transient film is refused with a message (moments are per pixel, not per
+// time bin; rendering it would silently give a steady image only).
 #include <functional>
 
 #include <femto/core/plugin.h>
@@ -24,6 +27,7 @@
 #include <femto/render/render_loop.h>
 #include <femto/render/scene.h>
 #include <femto/render/time_grid.h>
+#include <femto/render/transient_film.h>
 #include <femto/render/transient_integrator.h>
 
 namespace femto {
@@ -65,7 +69,7 @@ RadianceFunction radianceOf(const ObjectRef& integrator) {
 
 class MomentIntegrator final : public Integrator {
  public:
-  explicit MomentIntegrator(const Properties& props) {
+  explicit MomentIntegrator(const Properties& props) : location_(props.location()) {
     std::vector<ObjectRef> nested = props.objectsOfKind(ObjectKind::Integrator);
     if (nested.empty()) throw Error(props.location(), "\"moment\" needs at least one nested <integrator>");
     for (size_t k = 0; k < nested.size(); ++k) {
@@ -84,6 +88,12 @@ class MomentIntegrator final : public Integrator {
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
     const Sensor& sensor = scene.sensor();
     const Film& film = sensor.film();
+    // Moments are per pixel, not per time bin: a transient film would end up
+    // with a steady image only, so it is refused before any work.
+    if (dynamic_cast<const TransientFilm*>(&film))
+      throw Error(location_, str("\"moment\" computes per-pixel moments of steady radiance and cannot fill the "
+                                 "time-resolved film ", film.toString(), ": render the transient integrator on its own "
+                                 "for the volume, or give moment an <film type=\"hdrfilm\"> for the moments"));
     auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler, float* out) {
       Ray ray;
       Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
@@ -102,6 +112,7 @@ class MomentIntegrator final : public Integrator {
   std::string toString() const override { return str("MomentIntegrator[integrators=", integrators_.size(), "]"); }
 
  private:
+  SourceLocation location_;
   std::vector<RadianceFunction> integrators_;
   std::vector<std::string> channelNames_;
 };

@@ -39,9 +39,17 @@
 // | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
 // | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
 // | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
-// | temporal_filter | string  | "box"   | mitransient: how OPLs fall into bins; only "box"   | -    |
-// | gaussian_stddev | float   | 2       | mitransient: read for temporal_filter="gaussian"   | bins |
+// | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
+// | gaussian_stddev | float   | 2       | mitransient: its standard deviation (at least 0.5) | bins |
+// | discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray) finds; next-event estimates stay | - |
 // | version         | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
+//
+// The same source builds mitransient's and Mitsuba 2's names for this
+// integrator as plugins of their own (src/plugins/CMakeLists.txt):
+// `transient_prbvolpath` (mitransient's volumetric path tracer: max_depth
+// defaults to 6, as in mitransient) and `transientpath` (Mitsuba 2's
+// transient path tracer). Their output is that of transient_path with the
+// same parameters, bit for bit.
 #include <cmath>
 
 #include <femto/core/plugin.h>
@@ -77,10 +85,15 @@ struct PathState {
 
 }  // namespace
 
-class TransientPathIntegrator final : public TransientIntegrator {
+/// Defaults that differ between the names this integrator is known by.
+struct TransientPathDefaults {
+  int maxDepth = -1;
+};
+
+class TransientPathIntegrator : public TransientIntegrator {
  public:
-  explicit TransientPathIntegrator(const Properties& props)
-      : maxDepth_(int(props.getInt("max_depth", -1))),
+  explicit TransientPathIntegrator(const Properties& props, const TransientPathDefaults& defaults = {})
+      : maxDepth_(int(props.getInt("max_depth", defaults.maxDepth))),
         rrDepth_(int(props.getInt("rr_depth", 5))),
         hideEmitters_(props.getBool("hide_emitters", false)),
         observerTime_(props.getBool("observer_time", true)) {
@@ -92,11 +105,8 @@ class TransientPathIntegrator final : public TransientIntegrator {
         props.raise("camera_unwarp", "give either observer_time or camera_unwarp (its opposite), not both");
       observerTime_ = !props.getBool("camera_unwarp");
     }
-    std::string temporalFilter = props.getString("temporal_filter", "box");
-    props.getFloat("gaussian_stddev", 2.0f);
-    if (temporalFilter != "box")
-      props.raise("temporal_filter", str("\"", temporalFilter, "\" is not supported: contributions fall into the bin ",
-                                         "containing their OPL (\"box\")"));
+    readTemporalFilter(props);
+    discardDirectLight_ = props.getBool("discard_direct_light", false);
     props.getInt("version", 0);  // lajolla's volpath scenes select their homework variant with it
   }
 
@@ -123,7 +133,7 @@ class TransientPathIntegrator final : public TransientIntegrator {
         continue;
       }
       if (!hit) {
-        if (!(hideEmitters_ && s.depth == 0)) recordEnvironment(scene, s, recorder);
+        if (!(hideEmitters_ && s.depth == 0) && !discardDirectLight_) recordEnvironment(scene, s, recorder);
         return;
       }
       if (!advance(s, si.p) || s.opl >= horizon) return;
@@ -166,7 +176,7 @@ class TransientPathIntegrator final : public TransientIntegrator {
   /// sampling at the previous scattering vertex (shared with `path`).
   void recordEmission(const Scene& scene, const PathState& s, const SurfaceInteraction& si,
                       RadianceRecorder& recorder) const {
-    if (!si.emitter() || (hideEmitters_ && s.depth == 0)) return;
+    if (!si.emitter() || (hideEmitters_ && s.depth == 0) || discardDirectLight_) return;
     Color3f Le = emissionFound(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev);
     if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
   }
@@ -272,9 +282,25 @@ class TransientPathIntegrator final : public TransientIntegrator {
   int rrDepth_;
   bool hideEmitters_;
   bool observerTime_;
+  bool discardDirectLight_ = false;
 };
 
 }  // namespace femto
 
+#if defined(FEMTO_TRANSIENT_PATH_AS_PRBVOLPATH)
+namespace femto {
+// mitransient's integrators derive from Mitsuba 3's ADIntegrator, whose max_depth defaults to 6.
+class MitransientPrbVolpath final : public TransientPathIntegrator {
+ public:
+  explicit MitransientPrbVolpath(const Properties& props) : TransientPathIntegrator(props, {6}) {}
+};
+}  // namespace femto
+FEMTO_EXPORT_PLUGIN(femto::MitransientPrbVolpath, Integrator, "transient_prbvolpath",
+                    "mitransient's volumetric path tracer: transient_path with max_depth 6 by default")
+#elif defined(FEMTO_TRANSIENT_PATH_AS_TRANSIENTPATH)
+FEMTO_EXPORT_PLUGIN(femto::TransientPathIntegrator, Integrator, "transientpath",
+                    "Mitsuba 2's transient path tracer: transient_path under its old name")
+#else
 FEMTO_EXPORT_PLUGIN(femto::TransientPathIntegrator, Integrator, "transient_path",
                     "Transient volumetric path tracer (contributions binned by optical path length)")
+#endif

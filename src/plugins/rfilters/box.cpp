@@ -19,6 +19,8 @@ class BoxFilter final : public ReconstructionFilter {
 
   float eval(float x) const override { return std::abs(x) <= radius() ? 1.0f : 0.0f; }
 
+  Profile profile() const override { return {Profile::Type::Box, radius()}; }
+
   std::string toString() const override { return str("BoxFilter[radius=", radius(), "]"); }
 };
 

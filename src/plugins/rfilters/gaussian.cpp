@@ -26,6 +26,8 @@ class GaussianFilter final : public ReconstructionFilter {
 
   float eval(float x) const override { return std::max(0.0f, std::exp(alpha_ * x * x) - bias_); }
 
+  Profile profile() const override { return {Profile::Type::Gaussian, stddev_}; }
+
   std::string toString() const override { return str("GaussianFilter[stddev=", stddev_, "]"); }
 
  private:

@@ -18,6 +18,8 @@ class TentFilter final : public ReconstructionFilter {
 
   float eval(float x) const override { return std::max(0.0f, 1.0f - std::abs(x) / radius()); }
 
+  Profile profile() const override { return {Profile::Type::Tent, radius()}; }
+
   std::string toString() const override { return str("TentFilter[radius=", radius(), "]"); }
 };
 

@@ -158,9 +158,10 @@ ObjectRef Properties::getObject(const std::string& name) const {
   return std::get<ObjectRef>(e.value);
 }
 
-std::vector<ObjectRef> Properties::objectsOfKind(ObjectKind kind) const {
+std::vector<ObjectRef> Properties::objectsOfKind(ObjectKind kind, const std::string& except) const {
   std::vector<ObjectRef> out;
   for (const auto& name : order_) {
+    if (!except.empty() && name == except) continue;
     const Entry& e = values_.at(name);
     if (e.type != Type::Object) continue;
     const ObjectRef& obj = std::get<ObjectRef>(e.value);
@@ -172,8 +173,8 @@ std::vector<ObjectRef> Properties::objectsOfKind(ObjectKind kind) const {
   return out;
 }
 
-ObjectRef Properties::objectOfKind(ObjectKind kind) const {
-  auto all = objectsOfKind(kind);
+ObjectRef Properties::objectOfKind(ObjectKind kind, const std::string& except) const {
+  auto all = objectsOfKind(kind, except);
   if (all.size() > 1)
     throw Error(location_, str("\"", pluginName_, "\" takes at most one nested <", kindTag(kind), ">, got ", all.size()));
   return all.empty() ? nullptr : all.front();

@@ -82,10 +82,11 @@ class Properties {
   ObjectRef getObject(const std::string& name) const;
 
   /// All nested objects (named or not) of the given kind, in document order,
-  /// marking them as read.
-  std::vector<ObjectRef> objectsOfKind(ObjectKind kind) const;
+  /// marking them as read; `except` names one to leave out (a nested object
+  /// of that kind with a role of its own, e.g. a film's "tfilter").
+  std::vector<ObjectRef> objectsOfKind(ObjectKind kind, const std::string& except = "") const;
   /// The single nested object of a kind, or nullptr; more than one is an error.
-  ObjectRef objectOfKind(ObjectKind kind) const;
+  ObjectRef objectOfKind(ObjectKind kind, const std::string& except = "") const;
   /// Nested object (of `kind`) under `name` if present, else the single
   /// unnamed-or-named child of that kind; nullptr when none.
   template <typename T>

@@ -12,8 +12,9 @@ namespace femto {
 /// new one from plugin `fallback` with default parameters. Throws if the
 /// nested object is not a `T` (or the fallback plugin cannot be loaded).
 template <typename T>
-std::shared_ptr<T> nestedOrDefault(const Properties& props, ObjectKind kind, const char* fallback) {
-  ObjectRef obj = props.objectOfKind(kind);
+std::shared_ptr<T> nestedOrDefault(const Properties& props, ObjectKind kind, const char* fallback,
+                                   const std::string& except = "") {
+  ObjectRef obj = props.objectOfKind(kind, except);
   if (!obj) {
     Properties defaults(fallback);
     defaults.setLocation(props.location());

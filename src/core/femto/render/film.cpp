@@ -15,14 +15,17 @@ int readDimension(const Properties& props, const std::string& name, int64_t def,
 
 Film::Film(const Properties& props) : Film(props, "gaussian") {}
 
-Film::Film(const Properties& props, const char* defaultFilter) {
+Film::Film(const Properties& props, const char* defaultFilter) : Film(props, defaultFilter, std::string()) {}
+
+Film::Film(const Properties& props, const char* defaultFilter, const std::string& reservedFilterName) {
   constexpr int64_t MaxSize = 1 << 16;
   size_ = Point2i(readDimension(props, "width", 768, 1, MaxSize), readDimension(props, "height", 576, 1, MaxSize));
   cropOffset_ = Point2i(readDimension(props, "crop_offset_x", 0, 0, size_.x - 1),
                         readDimension(props, "crop_offset_y", 0, 0, size_.y - 1));
   cropSize_ = Point2i(readDimension(props, "crop_width", size_.x - cropOffset_.x, 1, size_.x - cropOffset_.x),
                       readDimension(props, "crop_height", size_.y - cropOffset_.y, 1, size_.y - cropOffset_.y));
-  filter_ = nestedOrDefault<ReconstructionFilter>(props, ObjectKind::ReconstructionFilter, defaultFilter);
+  filter_ = nestedOrDefault<ReconstructionFilter>(props, ObjectKind::ReconstructionFilter, defaultFilter,
+                                                  reservedFilterName);
 }
 
 Bitmap Film::developCrop(const ImageBlock& image) const {

@@ -40,6 +40,9 @@ class Film : public Object {
  protected:
   /// As Film(props), with plugin `defaultFilter` when no <rfilter> is nested.
   Film(const Properties& props, const char* defaultFilter);
+  /// As above, leaving the nested <rfilter name="`reservedFilterName`"> to the
+  /// subclass (Mitsuba 2's streak film: its time filter "tfilter").
+  Film(const Properties& props, const char* defaultFilter, const std::string& reservedFilterName);
 
  private:
   Point2i size_, cropOffset_, cropSize_;

@@ -19,6 +19,15 @@ class ReconstructionFilter : public Object {
   /// Tabulated eval(); call once from the subclass constructor after setting the radius.
   float evalTabulated(float x) const;
 
+  /// The filter's shape in words, for films that reuse a pixel filter along
+  /// their time axis (Mitsuba 2's streak film takes <rfilter name="tfilter">).
+  struct Profile {
+    enum class Type { Box, Tent, Gaussian, Other };
+    Type type = Type::Other;
+    float width = 0.0f;  // box and tent: radius; gaussian: standard deviation
+  };
+  virtual Profile profile() const { return {}; }
+
  protected:
   void setRadius(float r);
   void buildTable();

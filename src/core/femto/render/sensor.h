@@ -34,6 +34,8 @@ class Sensor : public Object {
   virtual bool requiresShape() const { return false; }
 
   const Film& film() const { return *film_; }
+  /// For the scene's set-up only (an integrator's settings for the film).
+  Film& film() { return *film_; }
   const Sampler& sampler() const { return *sampler_; }
   const Transform& toWorld() const { return toWorld_; }
   const Medium* medium() const { return medium_.get(); }

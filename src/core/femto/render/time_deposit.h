@@ -106,6 +106,7 @@ class TimeDeposit {
   }
   const TimeGrid& grid() const { return grid_; }
   const TimeFilter& filter() const { return filter_; }
+  bool unboundedHorizon() const { return unboundedHorizon_; }
 
  private:
   double toBins(double opl) const { return (opl - grid_.start) / grid_.binWidth; }

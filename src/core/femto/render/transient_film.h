@@ -14,13 +14,38 @@
 
 namespace femto {
 
+/// How a scene names the time axis: femto's `transient` film, mitransient's
+/// `transient_hdr_film` and Mitsuba 2's `streakhdrfilm` are one film written
+/// three ways (docs/coming-from-mitransient.md).
+struct TimeAxisSpelling {
+  /// Bin count, bin width and start (in OPL), each under its name and an
+  /// older alternative name ("" = none); giving both names is an error.
+  const char* bins = "temporal_bins";
+  const char* binsAlias = "";
+  const char* binWidth = "bin_width_opl";
+  const char* binWidthAlias = "";
+  const char* start = "start_opl";
+  const char* startAlias = "";
+  /// Defaults; a negative value makes the parameter required.
+  int64_t defaultBins = -1;
+  double defaultBinWidth = -1.0;
+  /// The time filter as a nested <rfilter name="tfilter"> (Mitsuba 2) rather
+  /// than time_filter / time_filter_width.
+  bool nestedTimeFilter = false;
+};
+
 class TransientFilm : public Film {
  public:
   /// Reads the Film parameters (default rfilter: box; filters wider than one
   /// pixel are refused), temporal_bins, start_opl + bin_width_opl or
   /// start_time + bin_width_time (seconds), time_filter + time_filter_width,
   /// complete_steady, write_volume, write_frames. See src/plugins/films/transient.cpp.
-  explicit TransientFilm(const Properties& props);
+  explicit TransientFilm(const Properties& props, const TimeAxisSpelling& spelling = {});
+
+  /// mitransient gives the time filter to the integrator (temporal_filter,
+  /// gaussian_stddev); the scene hands it to the film before rendering.
+  /// Refused, naming `where`, when the film gave a different filter itself.
+  void useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where);
 
   const TimeGrid& timeGrid() const { return deposit_.grid(); }
   const TimeFilter& timeFilter() const { return deposit_.filter(); }
@@ -49,6 +74,7 @@ class TransientFilm : public Film {
 
  private:
   TimeDeposit deposit_;
+  SourceLocation timeFilterGivenAt_;  // empty file: the film's filter is its default
   bool writeVolume_ = true, writeFrames_ = true;
 };
 

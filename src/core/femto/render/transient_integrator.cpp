@@ -2,6 +2,8 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <femto/core/error.h>
@@ -89,6 +91,21 @@ RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& optio
       return recorder.sum;
     };
   });
+}
+
+void TransientIntegrator::readTemporalFilter(const Properties& props) {
+  std::string type = props.getString("temporal_filter", "");
+  float stddev = props.getFloat("gaussian_stddev", 2.0f);
+  if (type.empty()) return;
+  if (type == "box") {
+    requestedTimeFilter_ = TimeFilter::box();
+  } else if (type == "gaussian") {
+    if (!(stddev > 0.0f) || !std::isfinite(stddev)) props.raise("gaussian_stddev", str("must be positive (bins), got ", stddev));
+    requestedTimeFilter_ = TimeFilter::gaussian(std::max(stddev, 0.5f));
+  } else {
+    props.raise("temporal_filter", str("expected \"box\", \"gaussian\" or \"\" (the film's own), got \"", type, "\""));
+  }
+  requestedTimeFilterAt_ = props.location("temporal_filter");
 }
 
 RenderStats TransientIntegrator::render(const Scene& scene, const RenderOptions& options) const {

@@ -6,11 +6,13 @@
 // the same integrator renders both.
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include <femto/math/ray.h>
 #include <femto/render/emission_pulse.h>
 #include <femto/render/integrator.h>
 #include <femto/render/spectrum.h>
+#include <femto/render/time_deposit.h>
 #include <femto/render/time_grid.h>
 
 namespace femto {
@@ -51,6 +53,22 @@ class TransientIntegrator : public Integrator {
   /// Drives the film: transient films get a time-binned volume (streamed),
   /// steady films the ordinary image.
   RenderStats render(const Scene& scene, const RenderOptions& options) const override;
+
+  /// The time filter this integrator asks the film to use (mitransient's
+  /// temporal_filter), or none: the film's own. The scene hands it over.
+  const std::optional<TimeFilter>& requestedTimeFilter() const { return requestedTimeFilter_; }
+  /// Where the scene asked for it (for messages).
+  const SourceLocation& requestedTimeFilterAt() const { return requestedTimeFilterAt_; }
+
+ protected:
+  /// mitransient's temporal filter on the integrator: temporal_filter = ""
+  /// (the film's own), "box" or "gaussian" with gaussian_stddev (bins,
+  /// default 2; at least 0.5, as mitransient clamps it).
+  void readTemporalFilter(const Properties& props);
+
+ private:
+  std::optional<TimeFilter> requestedTimeFilter_;
+  SourceLocation requestedTimeFilterAt_;
 };
 
 /// Progressive transient rendering (photon beams): before pass `pass`, called

@@ -73,11 +73,14 @@ int64_t parseInteger(std::string_view text) {
   return v;
 }
 
+// Mitsuba 3 lower-cases the value before comparing, so scenes written from
+// Python (value="True"/"False") load there; Mitsuba 0.6 takes the same two words.
 bool parseBoolean(std::string_view text) {
-  std::string_view t = trim(text);
-  if (t == "true") return true;
-  if (t == "false") return false;
-  throw Error(str("expected \"true\" or \"false\", got '", std::string(text), "'"));
+  std::string lower(trim(text));
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == "true") return true;
+  if (lower == "false") return false;
+  throw Error(str("expected \"true\" or \"false\" (any case), got '", std::string(text), "'"));
 }
 
 std::vector<double> parseNumberList(std::string_view text) {

@@ -14,7 +14,7 @@ namespace femto::xml {
 
 double parseFloat(std::string_view text);      // "expected a number, got 'abc'"
 int64_t parseInteger(std::string_view text);   // "expected an integer, got '1.5'"
-bool parseBoolean(std::string_view text);      // "true" / "false"
+bool parseBoolean(std::string_view text);      // "true" / "false", any case ("True" from Python)
 /// Numbers separated by commas and/or whitespace.
 std::vector<double> parseNumberList(std::string_view text);
 /// Exactly three numbers ("1, 2, 3" or "1 2 3").

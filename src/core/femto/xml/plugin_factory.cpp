@@ -6,6 +6,7 @@
 #include <femto/render/scene.h>
 
 #include "build_objects.h"
+#include "foreign_plugins.h"
 
 namespace femto::xml {
 namespace {
@@ -31,7 +32,8 @@ class PluginFactory final : public ObjectFactory {
       if (std::find(available.begin(), available.end(), name) == available.end()) {
         // A near miss is most likely a typo; otherwise the user may have
         // forgotten `-p DIR`, so say where we looked.
-        std::string hint = didYouMean(name, available);
+        std::string hint = adviceForForeignPlugin(kind, name);
+        if (hint.empty()) hint = didYouMean(name, available);
         if (hint.empty()) hint = " (no " + pluginFileName(name) + " in " + searchPathList(manager) + ")";
         throw Error(str("unknown <", kindTag(kind), "> plugin \"", name, "\"", hint));
       }

@@ -25,15 +25,56 @@ void upgradeLegacyNames(XmlNode& node) {
   for (auto& child : node.children) upgradeLegacyNames(child);
 }
 
+namespace {
+
+/// What a Mitsuba integrator name becomes: the femto plugin, and the
+/// max_depth the original defaults to when it differs from femto's -1
+/// (0 = keep femto's).
+struct IntegratorUpgrade {
+  std::string type;
+  int defaultMaxDepth = 0;
+};
+
+// Mitsuba's volumetric path tracers are transient_path (which renders steady
+// films too). Mitsuba 3's differentiable integrators render, in a forward
+// render, what their plain counterparts do; as Python ADIntegrators their
+// max_depth defaults to 6.
+IntegratorUpgrade upgradeIntegrator(const std::string& type) {
+  if (type == "volpath" || type == "volpath_simple" || type == "volpathmis") return {"transient_path"};
+  if (type == "prbvolpath") return {"transient_path", 6};
+  if (type == "prb" || type == "prb_basic" || type == "prb_projective") return {"path", 6};
+  if (type == "direct_projective") return {"direct"};
+  return {type};
+}
+
+bool hasParameter(const XmlNode& node, const std::string& name) {
+  for (const auto& child : node.children)
+    if (const std::string* n = child.attribute("name"); n && *n == name) return true;
+  return false;
+}
+
+}  // namespace
+
 std::string upgradePluginType(std::string_view tag, const std::string& type) {
-  if (tag == "integrator" && (type == "volpath" || type == "volpath_simple" || type == "volpathmis"))
-    return "transient_path";
-  return type;
+  return tag == "integrator" ? upgradeIntegrator(type).type : type;
 }
 
 void upgradePluginTypes(XmlNode& node) {
-  for (auto& [key, value] : node.attributes)
-    if (key == "type") value = upgradePluginType(node.tag, value);
+  if (const std::string* type = node.attribute("type"); type && node.tag == "integrator") {
+    IntegratorUpgrade upgrade = upgradeIntegrator(*type);
+    if (upgrade.defaultMaxDepth != 0 && !hasParameter(node, "max_depth")) {
+      XmlNode depth;
+      depth.tag = "integer";
+      depth.attributes = {{"name", "max_depth"}, {"value", std::to_string(upgrade.defaultMaxDepth)}};
+      depth.location = node.location;
+      depth.source = node.source;
+      depth.dialect = node.dialect;
+      node.children.push_back(std::move(depth));
+    }
+    node.setAttribute("type", upgrade.type);
+  } else if (type) {
+    node.setAttribute("type", upgradePluginType(node.tag, *type));
+  }
   for (auto& child : node.children) upgradePluginTypes(child);
 }
 

@@ -20,10 +20,14 @@ void upgradeLegacyNames(XmlNode& root);
 /// The femto plugin that renders scenes naming Mitsuba plugin `type` for an
 /// object with tag `tag`, or `type` itself. Mitsuba's volumetric path tracers
 /// ("volpath", 0.6's "volpath_simple", Mitsuba 3's "volpathmis") map to
-/// "transient_path", which also renders steady films. Both dialects.
+/// "transient_path", which also renders steady films; Mitsuba 3's
+/// differentiable prb, prb_basic, prb_projective map to "path",
+/// direct_projective to "direct", prbvolpath to "transient_path". Both dialects.
 std::string upgradePluginType(std::string_view tag, const std::string& type);
 
-/// Rewrite the type="" attributes of every node with upgradePluginType.
+/// Rewrite the type="" attributes of every node with upgradePluginType. A
+/// mapped integrator whose original defaults max_depth to 6 (Mitsuba 3's
+/// Python integrators) gets that max_depth when the scene gives none.
 void upgradePluginTypes(XmlNode& root);
 
 }  // namespace femto::xml

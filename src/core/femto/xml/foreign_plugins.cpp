@@ -1,0 +1,39 @@
+#include "foreign_plugins.h"
+
+#include <map>
+
+namespace femto::xml {
+namespace {
+
+constexpr const char* kUseSurfaceOrMedia =
+    "use path (surfaces), transient_path (media, time-resolved) or transient_beams (media, photon beams)";
+
+}  // namespace
+
+std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
+  if (kind != ObjectKind::Integrator) return "";
+  static const std::map<std::string, std::string> advice = {
+      {"bdpt", "bidirectional path tracing (Mitsuba's bdpt) is not part of femto"},
+      {"vcm", "vertex connection and merging is not part of femto"},
+      {"mlt", "Metropolis light transport is not part of femto"},
+      {"pssmlt", "primary-sample-space MLT is not part of femto"},
+      {"erpt", "energy redistribution path tracing is not part of femto"},
+      {"mmlt", "multiplexed MLT is not part of femto"},
+      {"ptracer", "particle tracing from the lights (ptracer) is not part of femto"},
+      {"vpl", "virtual point lights are not part of femto"},
+      {"photonmapper", "surface photon mapping is part of transient_beams only"},
+      {"ppm", "progressive photon mapping is part of transient_beams only"},
+      {"sppm", "stochastic progressive photon mapping is part of transient_beams only"},
+      {"guided_path", "path guiding (Mueller et al. 2017) is not part of femto"},
+      {"pathguiding", "path guiding is not part of femto"},
+      {"ppg", "practical path guiding is not part of femto"},
+      {"guided_volpath", "volumetric path guiding is not part of femto"},
+      {"transient_nlos_path", "non-line-of-sight rendering is not supported yet"},
+      {"transientnlospath", "non-line-of-sight rendering is not supported yet"},
+  };
+  auto it = advice.find(name);
+  if (it == advice.end()) return "";
+  return " (" + it->second + "; " + kUseSurfaceOrMedia + ")";
+}
+
+}  // namespace femto::xml
