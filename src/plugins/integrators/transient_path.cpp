@@ -43,6 +43,7 @@
 // | gaussian_stddev | float   | 2       | mitransient: its standard deviation (at least 0.5) | bins |
 // | discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray) finds; next-event estimates stay | - |
 // | version         | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
+// | block_size      | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
 //
 // The same source builds mitransient's and Mitsuba 2's names for this
 // integrator as plugins of their own (src/plugins/CMakeLists.txt):
@@ -108,6 +109,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     readTemporalFilter(props);
     discardDirectLight_ = props.getBool("discard_direct_light", false);
     props.getInt("version", 0);  // lajolla's volpath scenes select their homework variant with it
+    props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
   }
 
   void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
