@@ -15,10 +15,10 @@
 // | texture         | texture   | none           | modulates the intensity across the cone          | -           |
 // | to_world        | transform | identity       | position (origin) and orientation (+z) of the light | -        |
 // | sampling_weight | float     | 1              | relative probability of being picked for NEE     | -           |
-#include <femto/core/log.h>
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
 #include <femto/math/warp.h>
+#include <femto/render/cone_falloff.h>
 #include <femto/render/oriented_point_emitter.h>
 #include <femto/render/texture.h>
 
@@ -28,24 +28,10 @@ class SpotLight final : public OrientedPointEmitter {
  public:
   explicit SpotLight(const Properties& props)
       : OrientedPointEmitter(props),
-        intensity_(props.getColor("intensity", Color3f(1.0f))) {
+        intensity_(props.getColor("intensity", Color3f(1.0f))),
+        falloff_(props, 20.0f, 0.75f) {
     if (!intensity_.isValid()) props.raise("intensity", "must be finite and non-negative");
-    float cutoffDeg = props.getFloat("cutoff_angle", 20.0f);
-    if (!(cutoffDeg > 0.0f && cutoffDeg <= 90.0f))
-      props.raise("cutoff_angle", str("must be in (0, 90] degrees, got ", cutoffDeg));
-    float beamDeg = props.getFloat("beam_width", cutoffDeg * 0.75f);
-    if (!(beamDeg >= 0.0f)) props.raise("beam_width", str("must be at least 0 degrees, got ", beamDeg));
-    if (beamDeg > cutoffDeg) {  // as Mitsuba: a warning, and a beam without a soft edge
-      SourceLocation where = props.location("beam_width");
-      logWarn(where.known() ? where.toString() + ": " : "", "spot beam_width ", beamDeg,
-              " exceeds cutoff_angle ", cutoffDeg, "; using the cutoff angle");
-      beamDeg = cutoffDeg;
-    }
-    cutoff_ = degToRad(cutoffDeg);
-    beamWidth_ = degToRad(beamDeg);
-    cosCutoff_ = std::cos(cutoff_);
-    cosBeamWidth_ = std::cos(beamWidth_);
-    tanCutoff_ = std::tan(cutoff_);
+    tanCutoff_ = std::tan(falloff_.cutoff());
     if (props.has("texture")) {
       texture_ = std::dynamic_pointer_cast<Texture>(props.getObject("texture"));
       if (!texture_) props.raise("texture", "expected a <texture>");
@@ -54,48 +40,41 @@ class SpotLight final : public OrientedPointEmitter {
 
   /// Uniform directions in the cutoff cone (as Mitsuba): weight I(d) / pdf.
   Color3f sampleRay(const Point2f&, const Point2f& uDirection, Ray& ray) const override {
-    Vec3f local = warp::squareToUniformCone(uDirection, cosCutoff_);
+    Vec3f local = warp::squareToUniformCone(uDirection, falloff_.cosCutoff());
     ray = rayAlongLocal(local);
-    float pdf = warp::squareToUniformConePdf(local, cosCutoff_);
+    float pdf = warp::squareToUniformConePdf(local, falloff_.cosCutoff());
     return pdf > 0.0f ? intensityInLocal(local) / pdf : Color3f(0.0f);
   }
 
-  /// Intensity integrated over the sphere. Without a texture, in closed form
-  /// with b = beam_width and c = cutoff:
-  ///   2 pi I [ (1 - cos b) + int_b^c (c - t) / (c - b) sin t dt ]
-  ///   = 2 pi I [ 1 + (sin b - sin c) / (c - b) ],
-  /// which tends to 2 pi I (1 - cos c) as b -> c. A texture scales this by
-  /// its mean (exact for textures uniform over the cone).
+  /// Intensity integrated over the sphere (ConeFalloff::solidAngle). A
+  /// texture scales this by its mean (exact for textures uniform over the cone).
   Color3f power() const override {
-    float width = cutoff_ - beamWidth_;
-    float solidAngle = width > 1e-4f ? 2.0f * Pi * (1.0f + (std::sin(beamWidth_) - std::sin(cutoff_)) / width)
-                                     : 2.0f * Pi * (1.0f - std::cos(0.5f * (cutoff_ + beamWidth_)));
-    Color3f p = intensity_ * solidAngle;
+    Color3f p = intensity_ * falloff_.solidAngle();
     return texture_ ? p * texture_->mean() : p;
   }
 
   std::string toString() const override {
-    return str("SpotLight[position=", position_, ", intensity=", intensity_, ", cutoff_angle=", radToDeg(cutoff_),
-               ", beam_width=", radToDeg(beamWidth_), texture_ ? str(", texture=", texture_->toString()) : "", "]");
+    return str("SpotLight[position=", position_, ", intensity=", intensity_, ", cutoff_angle=", radToDeg(falloff_.cutoff()),
+               ", beam_width=", radToDeg(falloff_.beamWidth()), texture_ ? str(", texture=", texture_->toString()) : "", "]");
   }
 
  private:
   /// Mitsuba's falloff for a unit direction in the light's frame.
   Color3f intensityInLocal(const Vec3f& d) const override {
-    float cosTheta = d.z;
-    if (!(cosTheta > cosCutoff_)) return Color3f(0.0f);
+    float falloff = falloff_(d.z);
+    if (falloff == 0.0f) return Color3f(0.0f);
     Color3f value = intensity_;
     if (texture_) {
       SurfaceInteraction si;
       si.uv = Point2f(0.5f + 0.5f * d.x / (d.z * tanCutoff_), 0.5f + 0.5f * d.y / (d.z * tanCutoff_));
       value *= texture_->eval(si);
     }
-    if (cosTheta >= cosBeamWidth_) return value;
-    return value * ((cutoff_ - std::acos(std::min(cosTheta, 1.0f))) / (cutoff_ - beamWidth_));
+    return falloff == 1.0f ? value : value * falloff;
   }
 
   Color3f intensity_;
-  float cutoff_, beamWidth_, cosCutoff_, cosBeamWidth_, tanCutoff_;
+  ConeFalloff falloff_;
+  float tanCutoff_;
   std::shared_ptr<Texture> texture_;
 };
 
