@@ -10,6 +10,7 @@
 #include <femto/xml/loader.h>
 
 #include "plugin_util.h"
+#include "shape_hit.h"
 
 using namespace femto;
 using namespace femto::test;
@@ -25,16 +26,6 @@ void expectNear(const Vec3f& a, const Vec3f& b, float eps) {
   EXPECT_NEAR(a.x, b.x, eps);
   EXPECT_NEAR(a.y, b.y, eps);
   EXPECT_NEAR(a.z, b.z, eps);
-}
-
-/// Intersect a shape on its own and fill the interaction as the core does.
-bool hit(const Shape& shape, const Ray& ray, SurfaceInteraction& si) {
-  float t;
-  Point2f uv;
-  if (!shape.intersect(ray, t, uv)) return false;
-  shape.computeInteraction(ray, t, 0, uv, si);
-  si.t = t;
-  return true;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <femto/render/shape.h>
 
 #include "plugin_util.h"
+#include "shape_hit.h"
 
 using namespace femto;
 using namespace femto::test;
@@ -22,15 +23,6 @@ std::shared_ptr<Shape> cylinder(const Transform& toWorld) {
   Properties props("cylinder");
   props.setTransform("to_world", toWorld);
   return createPlugin<Shape>(ObjectKind::Shape, props);
-}
-
-bool hit(const Shape& shape, const Ray& ray, SurfaceInteraction& si) {
-  float t;
-  Point2f uv;
-  if (!shape.intersect(ray, t, uv)) return false;
-  shape.computeInteraction(ray, t, 0, uv, si);
-  si.t = t;
-  return true;
 }
 
 void expectNear(const Vec3f& a, const Vec3f& b, float eps) {
