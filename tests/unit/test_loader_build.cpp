@@ -93,6 +93,51 @@ TEST(LoaderBuild, UnusedParameterWarnsOrFailsWhenStrict) {
             "    <rgb name=\"reflectanse\" value=\"0.5\"/>");
 }
 
+TEST(LoaderBuild, UnusedNestedObjectIsReportedAsWritten) {
+  // An unnamed child is keyed "_arg_0" inside the loader; the message names
+  // what the file says: tag, type, id and the line it is declared on.
+  RecordingFactory factory;
+  factory.reads["point"] = {"intensity"};
+  LoadOptions strict;
+  strict.strict = true;
+  std::string nested = loadertest::errorOf([&] {
+    buildRecorded("<scene>\n  <emitter type=\"point\">\n    <medium type=\"homogeneous\" id=\"fog\"/>\n"
+                  "  </emitter>\n</scene>",
+                  strict, &factory);
+  });
+  EXPECT_EQ(nested,
+            "test.xml:3: nested <medium type=\"homogeneous\" id=\"fog\"> (line 3) of \"point\" was not used\n"
+            "    <medium type=\"homogeneous\" id=\"fog\"/>");
+  std::string referenced = loadertest::errorOf([&] {
+    buildRecorded("<scene>\n  <medium type=\"homogeneous\" id=\"fog\"/>\n  <emitter type=\"point\">\n"
+                  "    <ref id=\"fog\"/>\n  </emitter>\n</scene>",
+                  strict, &factory);
+  });
+  EXPECT_EQ(referenced,
+            "test.xml:4: referenced <medium type=\"homogeneous\" id=\"fog\"> (line 2) of \"point\" was not used\n"
+            "    <ref id=\"fog\"/>");
+  // Without an id the tag and type alone; never the internal key, nor a "did you mean".
+  std::string anonymous = loadertest::errorOf([&] {
+    buildRecorded("<scene>\n  <emitter type=\"point\">\n    <rfilter type=\"box\"/>\n  </emitter>\n</scene>", strict,
+                  &factory);
+  });
+  EXPECT_EQ(anonymous.rfind("test.xml:3: nested <rfilter type=\"box\"> (line 3) of \"point\" was not used\n", 0), 0u)
+      << anonymous;
+  for (const auto& message : {nested, referenced, anonymous}) EXPECT_EQ(message.find("_arg_"), std::string::npos);
+}
+
+TEST(LoaderBuild, ErrorsAboutAnUnnamedChildUseItsLabel) {
+  Properties props("point");
+  props.setObject("_arg_0", std::make_shared<loadertest::RecordedObject>(ObjectKind::Medium, Properties("homogeneous")),
+                  SourceLocation{"scene.xml", 7}, "nested <medium type=\"homogeneous\"> (line 7)");
+  EXPECT_EQ(props.describe("_arg_0"), "nested <medium type=\"homogeneous\"> (line 7)");
+  EXPECT_EQ(props.describe("intensity"), "parameter \"intensity\"");
+  std::string raised = loadertest::errorOf([&] { props.raise("_arg_0", "is not wanted here"); });
+  EXPECT_EQ(raised, "scene.xml:7: nested <medium type=\"homogeneous\"> (line 7) of \"point\": is not wanted here");
+  std::string wrongType = loadertest::errorOf([&] { props.getFloat("_arg_0"); });
+  EXPECT_EQ(wrongType.find("_arg_"), std::string::npos) << wrongType;
+}
+
 TEST(LoaderBuild, ResolutionAndSampleCountOverrides) {
   LoadOptions options;
   options.resolution = Point2i(64, 48);

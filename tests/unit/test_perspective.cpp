@@ -113,3 +113,54 @@ TEST(Perspective, ReadsMitsubaCameraAndFilmParameters) {
 
 }  // namespace
 }  // namespace femto
+
+namespace femto {
+namespace {
+
+std::shared_ptr<Sensor> offsetCamera(float offsetX, float offsetY) {
+  Properties film("hdrfilm");
+  film.setInt("width", 100);
+  film.setInt("height", 50);
+  Properties props("perspective");
+  props.setFloat("fov", 90);
+  props.setFloat("principal_point_offset_x", offsetX);
+  props.setFloat("principal_point_offset_y", offsetY);
+  props.setObject("film", test::makePlugin<Object>(ObjectKind::Film, film));
+  return test::makePlugin<Sensor>(ObjectKind::Sensor, props);
+}
+
+// Mitsuba 3 (perspective.cpp, sample_ray) adds the offset, in film-size
+// units, to the position sample: pixel (sx, sy) sees what the centred camera
+// sees at (sx + offset_x, sy + offset_y). With +x to the image left in camera
+// space, a positive offset_x turns the view to the image right (camera -x),
+// a positive offset_y down (camera -y).
+TEST(Perspective, PrincipalPointOffsetShiftsTheImagePlaneInFilmUnits) {
+  auto cam = offsetCamera(0.25f, -0.1f);
+  Ray ray;
+  // Closed form at z = 1: x = tan(45°) (1 - 2 (px / W + ox)), y = tan(45°) (H / W) (1 - 2 (py / H + oy)).
+  cam->sampleRay({50, 25}, {}, ray);
+  expectDirection(ray.d, Vec3f(1.0f - 2.0f * 0.75f, 0.5f * (1.0f - 2.0f * 0.4f), 1.0f));
+  EXPECT_LT(ray.d.x, 0.0f) << "positive offset_x must look to the image right (camera -x)";
+  EXPECT_GT(ray.d.y, 0.0f) << "negative offset_y must look up";
+  cam->sampleRay({10, 40}, {}, ray);
+  expectDirection(ray.d, Vec3f(1.0f - 2.0f * (0.1f + 0.25f), 0.5f * (1.0f - 2.0f * (0.8f - 0.1f)), 1.0f));
+  // The same ray as the centred camera's at the shifted film position; the
+  // origin stays at the pinhole (off-axis frustum, no rotation).
+  Ray centred;
+  offsetCamera(0.0f, 0.0f)->sampleRay({10 + 25, 40 - 5}, {}, centred);
+  expectDirection(ray.d, centred.d);
+  EXPECT_NEAR(distance(ray.o, Point3f(0.0f)), 0.0f, 1e-6f);
+}
+
+TEST(Perspective, FovAxisIsCaseInsensitiveAndSpectralResponseIsRefused) {
+  Ray ray;
+  camera(100, 50, 90, "Y", Transform())->sampleRay({50, 0}, {}, ray);
+  expectDirection(ray.d, Vec3f(0, 1, 1));
+  Properties props("perspective");
+  props.setFloat("fov", 40);
+  props.setFloat("srf", 1.0);
+  EXPECT_THROW(test::makePlugin<Sensor>(ObjectKind::Sensor, props), Error);
+}
+
+}  // namespace
+}  // namespace femto

@@ -1,6 +1,6 @@
 #pragma once
 // Where media are, for the two tracers of transient_beams: the medium a point
-// light's photons start in (emitters do not say), and how long a beam or
+// light's photons start in when the emitter names none, and how long a beam or
 // camera segment that meets no surface needs to be.
 #include <femto/math/ray.h>
 

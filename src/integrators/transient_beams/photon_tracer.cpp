@@ -127,7 +127,9 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   ph.clockAtFirstSurface = atInfinity_[emitterIndex];
   if (ph.power.isBlack() || !ph.power.isValid()) return;
   const bool storePoints = settings_.volumeEstimator == VolumeEstimator::Points;
-  ph.medium = mediumAround(scene_, ph.ray);
+  // The medium the scene puts the emitter in (Mitsuba 0.6's
+  // <emitter><ref id="fog"/></emitter>), else the one its geometry implies.
+  ph.medium = emitter.medium() ? emitter.medium() : mediumAround(scene_, ph.ray);
   ph.vertex = ph.ray.o;
   const float startLevel = ph.power.maxValue();
   // The camera adds at least one segment to every photon path: a photon

@@ -6,6 +6,7 @@
 // |-----------------|-------|----------|-------------------------------------------|------------------------|
 // | radiance        | rgb   | required | emitted radiance                          | W / (m^2 sr) per channel |
 // | sampling_weight | float | 1        | relative probability of being picked for NEE | -                   |
+// | medium          | medium | none    | accepted as Mitsuba endpoints take it; the shape's interior/exterior decide | - |
 #include <femto/core/plugin.h>
 #include <femto/math/warp.h>
 #include <femto/render/emitter.h>

@@ -7,6 +7,7 @@
 // | position        | point     | (0,0,0)  | where the light is (alternative to to_world) | scene units  |
 // | to_world        | transform | identity | places the light at to_world(0, 0, 0)     | -               |
 // | sampling_weight | float     | 1        | relative probability of being picked for NEE | -            |
+// | medium          | medium    | none     | the medium the light sits in: a nested <medium> or <ref>, any name (endpoint_medium.h) | - |
 #include <femto/core/plugin.h>
 #include <femto/math/warp.h>
 #include <femto/render/emitter.h>

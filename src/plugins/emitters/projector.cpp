@@ -21,6 +21,7 @@
 // | fov        | float     | 28.8415  | horizontal field of view (Mitsuba 3's default: 50 mm lens)  | degrees |
 // | to_world   | transform | identity | position (origin) and orientation (+z forward, +y up)     | -      |
 // | sampling_weight | float | 1       | relative probability of being picked for NEE              | -      |
+// | medium          | medium    | none     | the medium the light sits in: a nested <medium> or <ref>, any name (endpoint_medium.h) | - |
 #include <cmath>
 
 #include <femto/core/plugin.h>

@@ -15,6 +15,7 @@
 // | texture         | texture   | none           | modulates the intensity across the cone          | -           |
 // | to_world        | transform | identity       | position (origin) and orientation (+z) of the light | -        |
 // | sampling_weight | float     | 1              | relative probability of being picked for NEE     | -           |
+// | medium          | medium    | none     | the medium the light sits in: a nested <medium> or <ref>, any name (endpoint_medium.h) | - |
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
 #include <femto/math/warp.h>

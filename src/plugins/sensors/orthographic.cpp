@@ -8,6 +8,7 @@
 // | name      | type      | default  | meaning                                         |
 // |-----------|-----------|----------|-------------------------------------------------|
 // | to_world  | transform | identity | camera-to-world transform (its scale sets the view size) |
+// | medium      | medium    | none     | the medium the camera sits in: a nested <medium> or <ref>, any name |
 // | near_clip | float     | 0.01     | camera-space depth before which nothing is seen |
 // | far_clip  | float     | 10000    | camera-space depth beyond which nothing is seen |
 #include <femto/core/plugin.h>

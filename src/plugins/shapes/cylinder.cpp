@@ -3,16 +3,26 @@
 // core). Normals point away from the axis unless flip_normals. uv =
 // (phi / 2pi, height fraction from p0), as in Mitsuba 3.
 //
+// Any affine to_world is rendered as it says: the tube is intersected in
+// object space (the unit tube x^2 + y^2 = 1, 0 <= z <= 1), normals are mapped
+// by the inverse transpose, and a scale that differs between x and y (or a
+// shear) gives an elliptic tube whose area and uniform position samples come
+// from the exact arc length of its cross-section (math/ellipse_arc.h).
+// Mitsuba 3 keeps a different axis scale (x = y != z) but warns about unequal
+// x and y scales or shear and then renders a circular tube of the x scale;
+// femto renders the ellipse.
+//
 // | name         | type      | default  | meaning                                   | unit        |
 // |--------------|-----------|----------|-------------------------------------------|-------------|
 // | p0           | point     | (0,0,0)  | centre of the first end                   | scene units |
 // | p1           | point     | (0,0,1)  | centre of the second end                  | scene units |
 // | radius       | float     | 1        | radius                                    | scene units |
-// | to_world     | transform | identity | object-to-world similarity transform      | -           |
+// | to_world     | transform | identity | object-to-world affine transform          | -           |
 // | flip_normals | boolean   | false    | normals point toward the axis             | -           |
 #include <cmath>
 
 #include <femto/core/plugin.h>
+#include <femto/math/ellipse_arc.h>
 #include <femto/render/shape.h>
 
 namespace femto {
@@ -29,9 +39,6 @@ class Cylinder final : public Shape {
     Vec3f axis = p1 - p0;
     float height = length(axis);
     if (!(height > 0.0f)) props.raise("p1", "must differ from p0");
-    // The area is closed-form only while the cross-section stays a circle.
-    float scale = toWorld.similarityScale();
-    if (!(scale > 0.0f)) props.raise("to_world", "a cylinder's transform may only rotate, translate and scale uniformly");
 
     // Object space: the unit cylinder x^2 + y^2 = 1, 0 <= z <= 1.
     Frame frame(axis / height);
@@ -41,20 +48,30 @@ class Cylinder final : public Shape {
                                          0.0f, 0.0f, 0.0f, 1.0f});
     toWorld_ = toWorld * Transform::translate(p0) * Transform(basis) * Transform::scale({radius, radius, height});
     toLocal_ = toWorld_.inverse();
-    area_ = 2.0f * Pi * radius * height * scale * scale;
+    // Area element of the mapped tube: |(M e_phi) x (M e_z)| dphi dz with
+    // M e_phi = -sin(phi) X + cos(phi) Y, i.e. the speed of the ellipse
+    // (X x Z) cos(phi) + (Y x Z) sin(phi); z enters linearly.
+    Vec3d x(toWorld_.vector({1, 0, 0})), y(toWorld_.vector({0, 1, 0})), z(toWorld_.vector({0, 0, 1}));
+    try {
+      profile_ = EllipseArc(cross(x, z), cross(y, z));
+    } catch (const Error&) {
+      props.raise("to_world", "flattens the cylinder (its transform is singular)");
+    }
+    area_ = float(profile_.perimeter());
   }
 
   BoundingBox3f bbox() const override { return toWorld_.bbox({Point3f(-1, -1, 0), Point3f(1, 1, 1)}); }
   float surfaceArea() const override { return area_; }
 
   PositionSample samplePosition(const Point2f& u) const override {
-    // (phi, z) uniform is uniform by area on a circular tube.
-    float phi = 2.0f * Pi * u.y;
+    // z uniform and phi uniform by the cross-section's arc length: uniform by
+    // area (on a circular tube phi is simply 2 pi u.y).
+    float phi = float(profile_.angleAtFraction(u.y));
     Point3f local(std::cos(phi), std::sin(phi), u.x);
     PositionSample ps;
     ps.p = toWorld_.point(local);
     ps.n = normalAt(local);
-    ps.uv = Point2f(u.y, u.x);
+    ps.uv = Point2f(phi * Inv2Pi, u.x);
     ps.pdf = 1.0f / area_;
     return ps;
   }
@@ -113,6 +130,7 @@ class Cylinder final : public Shape {
   }
 
   Transform toWorld_, toLocal_;
+  EllipseArc profile_;  // the cross-section, whose arc length is the area per unit height fraction
   float area_ = 0.0f;
   bool flipNormals_ = false;
 };

@@ -39,7 +39,15 @@ void Properties::setPoint(const std::string& n, const Point3f& v, SourceLocation
 void Properties::setVector(const std::string& n, const Vec3f& v, SourceLocation l) { set(n, Type::Vector, v, std::move(l)); }
 void Properties::setColor(const std::string& n, const Color3f& v, SourceLocation l) { set(n, Type::Color, v, std::move(l)); }
 void Properties::setTransform(const std::string& n, const Transform& v, SourceLocation l) { set(n, Type::Transform, v, std::move(l)); }
-void Properties::setObject(const std::string& n, ObjectRef v, SourceLocation l) { set(n, Type::Object, std::move(v), std::move(l)); }
+void Properties::setObject(const std::string& n, ObjectRef v, SourceLocation l, std::string label) {
+  set(n, Type::Object, std::move(v), std::move(l));
+  values_.at(n).label = std::move(label);
+}
+
+std::string Properties::describe(const std::string& name) const {
+  const Entry* e = find(name);
+  return e && !e->label.empty() ? e->label : str("parameter \"", name, "\"");
+}
 
 const Properties::Entry* Properties::find(const std::string& name) const {
   auto it = values_.find(name);
@@ -52,6 +60,8 @@ bool Properties::has(const std::string& name) const {
 }
 
 std::string Properties::suggestionFor(const std::string& unusedName) const {
+  // An unnamed child has no name the user could have misspelt.
+  if (const Entry* e = find(unusedName); e && !e->label.empty()) return "";
   std::vector<std::string> absent;
   for (const auto& name : asked_)
     if (!values_.count(name)) absent.push_back(name);
@@ -71,7 +81,7 @@ SourceLocation Properties::location(const std::string& name) const {
 
 void Properties::typeError(const std::string& name, const Entry& e, const char* expected) const {
   throw Error(e.loc.known() ? e.loc : location_,
-              str("parameter \"", name, "\" of ", pluginName_.empty() ? std::string("object") : "\"" + pluginName_ + "\"",
+              str(describe(name), " of ", pluginName_.empty() ? std::string("object") : "\"" + pluginName_ + "\"",
                   ": expected <", expected, ">, got <", typeName(e.type), ">"));
 }
 
@@ -86,7 +96,7 @@ const Properties::Entry& Properties::require(const std::string& name, Type expec
 }
 
 void Properties::raise(const std::string& name, const std::string& message) const {
-  throw Error(location(name), str("parameter \"", name, "\" of \"", pluginName_, "\": ", message));
+  throw Error(location(name), str(describe(name), " of \"", pluginName_, "\": ", message));
 }
 
 bool Properties::getBool(const std::string& name) const {

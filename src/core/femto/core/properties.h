@@ -56,8 +56,12 @@ class Properties {
   void setColor(const std::string& name, const Color3f& v, SourceLocation loc = {});
   void setTransform(const std::string& name, const Transform& v, SourceLocation loc = {});
   /// Nested objects and references. Unnamed children get a generated name
-  /// ("_arg_0", ...) from the loader.
-  void setObject(const std::string& name, ObjectRef v, SourceLocation loc = {});
+  /// ("_arg_0", ...) from the loader, which never reaches a message: the
+  /// loader gives them a `label` saying what the user wrote (see describe).
+  void setObject(const std::string& name, ObjectRef v, SourceLocation loc = {}, std::string label = {});
+  /// How messages name a parameter: its label when it has one (e.g. `nested
+  /// <medium type="homogeneous" id="fog"> (line 4)`), else `parameter "name"`.
+  std::string describe(const std::string& name) const;
 
   // Getters mark the parameter as read. The forms without a default throw
   // "missing parameter" errors naming the object's file:line. Wrong types throw
@@ -113,6 +117,7 @@ class Properties {
     Type type;
     Value value;
     SourceLocation loc;
+    std::string label;  // what messages call an unnamed child; empty for named parameters
     mutable bool queried = false;
   };
   void set(const std::string& name, Type type, Value v, SourceLocation loc);

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <femto/render/endpoint_medium.h>
+#include <femto/render/medium.h>
+
 namespace femto {
 
 Emitter::Emitter(const Properties& props) {
@@ -9,6 +12,7 @@ Emitter::Emitter(const Properties& props) {
   if (!(samplingWeight_ >= 0.0f) || !std::isfinite(samplingWeight_))
     props.raise("sampling_weight", str("must be a finite value >= 0, got ", samplingWeight_));
   pulse_ = EmissionPulse::fromProperties(props);
+  medium_ = endpointMedium(props);
 }
 
 Color3f Emitter::eval(const SurfaceInteraction&, const Vec3f&) const { return Color3f(0.0f); }

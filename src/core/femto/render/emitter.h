@@ -2,6 +2,7 @@
 // Light sources. Directions are world space. Area emitters are attached to a
 // shape (setShape) by the Shape constructor.
 #include <cmath>
+#include <memory>
 
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
@@ -12,6 +13,7 @@
 namespace femto {
 
 class Emitter;
+class Medium;
 class Shape;
 class Scene;
 
@@ -46,7 +48,8 @@ inline float sampleDeltaPosition(const Point3f& position, const Point3f& ref, Di
 class Emitter : public Object {
  public:
   /// Reads "sampling_weight" (default 1) and the temporal profile (`pulse`,
-  /// `pulse_sigma`/`pulse_fwhm`, `pulse_width`, `pulse_offset`: emission_pulse.h).
+  /// `pulse_sigma`/`pulse_fwhm`, `pulse_width`, `pulse_offset`: emission_pulse.h)
+  /// and the medium the emitter sits in (endpoint_medium.h).
   explicit Emitter(const Properties& props);
   ObjectKind kind() const override { return ObjectKind::Emitter; }
 
@@ -75,10 +78,16 @@ class Emitter : public Object {
   float samplingWeight() const { return samplingWeight_; }
   /// When this emitter emits (transient rendering); a Dirac at OPL 0 by default.
   const EmissionPulse& pulse() const { return pulse_; }
+  /// The medium the scene says the emitter sits in, or null (then light
+  /// tracers find it from the geometry around the emitter). Camera-side
+  /// integrators need no such hint: next-event estimation connects from the
+  /// medium of the path vertex and tracks the boundaries it crosses.
+  const Medium* medium() const { return medium_.get(); }
 
  private:
   float samplingWeight_ = 1.0f;
   EmissionPulse pulse_;
+  std::shared_ptr<Medium> medium_;
 };
 
 }  // namespace femto

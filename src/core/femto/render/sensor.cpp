@@ -1,6 +1,7 @@
 #include <femto/render/sensor.h>
 
 #include <femto/render/default_child.h>
+#include <femto/render/endpoint_medium.h>
 #include <femto/render/medium.h>
 
 namespace femto {
@@ -8,12 +9,7 @@ Sensor::Sensor(const Properties& props) {
   toWorld_ = props.getTransform("to_world", Transform());
   film_ = nestedOrDefault<Film>(props, ObjectKind::Film, "hdrfilm");
   sampler_ = nestedOrDefault<Sampler>(props, ObjectKind::Sampler, "independent");
-  if (props.has("medium")) {
-    medium_ = std::dynamic_pointer_cast<Medium>(props.getObject("medium"));
-    if (!medium_) props.raise("medium", "expected a <medium>");
-  } else {
-    medium_ = props.object<Medium>(ObjectKind::Medium);
-  }
+  medium_ = endpointMedium(props);
   // Mitsuba sensors take a shutter interval for motion blur; femto's scenes are static.
   float open = props.getFloat("shutter_open", 0.0f), close = props.getFloat("shutter_close", open);
   if (close < open) props.raise("shutter_close", str("must not be before shutter_open (", open, ")"));

@@ -16,7 +16,7 @@ class Shape;
 class Sensor : public Object {
  public:
   /// Reads "to_world", the nested <film> (default hdrfilm) and <sampler>
-  /// (default independent), an optional "medium" ref the camera sits in, and
+  /// (default independent), the medium the camera sits in (endpoint_medium.h), and
   /// Mitsuba's "shutter_open"/"shutter_close" (accepted; scenes are static).
   explicit Sensor(const Properties& props);
   ObjectKind kind() const override { return ObjectKind::Sensor; }

@@ -22,6 +22,21 @@ bool isOverridden(const std::vector<std::pair<std::string, int64_t>>& overrides,
   return false;
 }
 
+/// What messages call an unnamed child object, in the words of the file:
+/// `nested <medium type="homogeneous" id="fog"> (line 4)`, or `referenced
+/// ...` for a <ref> (with the line the object is declared on), so that the
+/// loader's generated key ("_arg_0") never reaches the user.
+std::string describeUnnamedChild(const XmlNode& child, const XmlNode& object) {
+  std::string tag = str("<", object.tag);
+  for (const char* attribute : {"type", "id"})
+    if (const std::string* value = object.attribute(attribute); value && !value->empty())
+      tag += str(" ", attribute, "=\"", *value, "\"");
+  tag += ">";
+  std::string where = object.location.file == child.location.file ? str("line ", object.location.line)
+                                                                   : object.location.toString();
+  return str(child.tag == "ref" ? "referenced " : "nested ", tag, " (", where, ")");
+}
+
 }  // namespace
 
 Properties ObjectBuilder::properties(const XmlNode& node) {
@@ -59,9 +74,10 @@ Properties ObjectBuilder::properties(const XmlNode& node) {
     if (*kind == ObjectKind::Scene && child.tag != "ref" && index_.referenced.count(child.attributeOr("id", "")))
       continue;
     ObjectRef object = build(*objectNode);
-    std::string key = name && !name->empty() ? *name : str("_arg_", unnamed++);
+    const bool named = name && !name->empty();
+    std::string key = named ? *name : str("_arg_", unnamed++);
     try {
-      props.setObject(key, object, child.location);
+      props.setObject(key, object, child.location, named ? std::string() : describeUnnamedChild(child, *objectNode));
     } catch (const Error& e) {
       throw expanded_.sources.addEcho(e, child);
     }
@@ -97,8 +113,8 @@ void ObjectBuilder::reportUnused(const Properties& props, const XmlNode& node) c
         !props.getObject(name)->id().empty())
       continue;
     SourceLocation where = props.location(name);
-    std::string message = str("parameter \"", name, "\" of \"", props.pluginName(), "\" was not used",
-                              props.suggestionFor(name));
+    std::string message =
+        str(props.describe(name), " of \"", props.pluginName(), "\" was not used", props.suggestionFor(name));
     Error error = sceneError(where, expanded_.sources.lineText(where), message);
     if (options_.strict) throw error;
     logWarn(error.what());
