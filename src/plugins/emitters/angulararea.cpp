@@ -12,6 +12,7 @@
 // | cutoff_angle    | float | 10       | half-angle beyond which nothing is emitted    | degrees                  |
 // | beam_width      | float | cutoff   | half-angle of the fully lit core              | degrees                  |
 // | sampling_weight | float | 1        | relative probability of being picked for NEE  | -                        |
+// | medium          | medium | none    | accepted as Mitsuba endpoints take it; the shape's interior/exterior decide | - |
 #include <femto/core/plugin.h>
 #include <femto/math/frame.h>
 #include <femto/math/warp.h>
