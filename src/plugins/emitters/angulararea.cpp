@@ -19,6 +19,7 @@
 #include <femto/render/cone_falloff.h>
 #include <femto/render/emitter.h>
 #include <femto/render/shape.h>
+#include <femto/render/shape_direction_sampling.h>
 
 namespace femto {
 
@@ -34,30 +35,11 @@ class AngularAreaEmitter final : public Emitter {
   bool isDelta() const override { return false; }
 
   Color3f sampleDirection(const Point3f& ref, const Point2f& u, DirectionSample& ds) const override {
-    ds = DirectionSample();
-    PositionSample ps = shape().samplePosition(u);
-    Vec3f toLight = ps.p - ref;
-    float dist2 = squaredLength(toLight);
-    if (!(dist2 > 0.0f)) return Color3f(0.0f);
-    ds.p = ps.p;
-    ds.n = ps.n;
-    ds.dist = std::sqrt(dist2);
-    ds.d = toLight / ds.dist;
-    ds.pdf = pdfDirection(ref, ds);
-    if (!(ds.pdf > 0.0f) || !std::isfinite(ds.pdf)) {
-      ds.pdf = 0.0f;
-      return Color3f(0.0f);
-    }
+    if (!sampleShapeDirection(shape(), ref, u, ds)) return Color3f(0.0f);
     return radiance_ * (falloff_(-dot(ds.n, ds.d)) / ds.pdf);
   }
 
-  /// As `area`: 1/A times dist^2 / cos(theta_light) (Veach 1997, eq. 8.10),
-  /// zero behind the emitter.
-  float pdfDirection(const Point3f&, const DirectionSample& ds) const override {
-    float cosLight = -dot(ds.n, ds.d);
-    if (cosLight <= 0.0f) return 0.0f;
-    return ds.dist * ds.dist / (cosLight * shape().surfaceArea());
-  }
+  float pdfDirection(const Point3f&, const DirectionSample& ds) const override { return shapeDirectionPdf(shape(), ds); }
 
   Color3f eval(const SurfaceInteraction& si, const Vec3f& w) const override {
     return radiance_ * falloff_(dot(si.n, w));
