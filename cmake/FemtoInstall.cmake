@@ -7,8 +7,12 @@ install(TARGETS femto_core EXPORT femtoTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Only the public headers: the loader's stages (xml/ except loader.h) and the
+# Embree wrapper (render/detail/) are the core's own business.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/core/femto DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.h" PATTERN "*.inl")
+  FILES_MATCHING PATTERN "*.h" PATTERN "*.inl"
+  PATTERN "detail" EXCLUDE PATTERN "xml" EXCLUDE)
+install(FILES ${PROJECT_SOURCE_DIR}/src/core/femto/xml/loader.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/femto/xml)
 install(EXPORT femtoTargets NAMESPACE femto:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/femto)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/femtoConfig.cmake.in
   ${PROJECT_BINARY_DIR}/femtoConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/femto)

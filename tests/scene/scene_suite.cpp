@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/image/image_io.h>
 
 #include "run_femto.h"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include <femto/image/image_io.h>
-#include <femto/render/npy_volume.h>
-#include <femto/render/volume_info.h>
+#include <femto/film/npy_volume.h>
+#include <femto/film/volume_info.h>
 
 namespace femto::test {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto::test {
 

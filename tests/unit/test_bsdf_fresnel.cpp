@@ -1,4 +1,4 @@
-// Fresnel functions of render/fresnel.h against values derived by hand from
+// Fresnel functions of scattering/fresnel.h against values derived by hand from
 // the Fresnel equations, and the diffuse-reflectance fit against numerical
 // integration.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include <femto/math/constants.h>
 #include <femto/math/frame.h>
-#include <femto/render/fresnel.h>
+#include <femto/scattering/fresnel.h>
 
 using namespace femto;
 

@@ -10,7 +10,7 @@
 
 #include <femto/math/warp.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/fresnel.h>
+#include <femto/scattering/fresnel.h>
 #include <femto/xml/loader.h>
 
 #include "chi2.h"

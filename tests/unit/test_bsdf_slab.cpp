@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <femto/math/warp.h>
-#include <femto/render/fresnel.h>
+#include <femto/scattering/fresnel.h>
 
 #include "li_estimate.h"
 

@@ -4,8 +4,8 @@
 // reciprocity, transport-mode scaling and errors for bad parameters.
 #include <gtest/gtest.h>
 
-#include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/scattering/ior.h>
 
 #include "bsdf_test_util.h"
 #include "plugin_util.h"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include <femto/analysis/compare_files.h>
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 #include "compare_test_files.h"
 #include "plugin_util.h"

@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/distribution.h>
 
 #include "chi2.h"

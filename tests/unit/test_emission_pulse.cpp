@@ -9,11 +9,11 @@
 #include <numeric>
 #include <vector>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/properties.h>
 #include <femto/math/pcg32.h>
-#include <femto/render/emission_pulse.h>
-#include <femto/render/time_deposit.h>
+#include <femto/time/emission_pulse.h>
+#include <femto/time/time_deposit.h>
 
 #include "plugin_util.h"
 

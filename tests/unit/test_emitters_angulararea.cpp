@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include <femto/math/pcg32.h>
-#include <femto/render/cone_falloff.h>
+#include <femto/lights/cone_falloff.h>
 #include <femto/render/emitter.h>
 #include <femto/render/shape.h>
 #include <femto/xml/loader.h>

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/image/image_io.h>
 
 #include "render_test_util.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include <femto/analysis/image_metrics.h>
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 namespace {

@@ -5,7 +5,7 @@
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
-#include <femto/render/transient_film.h>
+#include <femto/film/transient_film.h>
 #include <femto/xml/loader.h>
 
 #include "loader_test_support.h"

@@ -5,7 +5,7 @@
 
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
-#include <femto/render/volumetric.h>
+#include <femto/transport/volumetric.h>
 #include <femto/xml/loader.h>
 
 #include "render_test_util.h"

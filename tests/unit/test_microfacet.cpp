@@ -1,11 +1,11 @@
-// Microfacet distributions (render/microfacet.h): normalisation of D and of
+// Microfacet distributions (scattering/microfacet.h): normalisation of D and of
 // the visible-normal density by numerical quadrature, chi-square tests of
 // both sampling strategies, Mitsuba's parameters, and finite values at the
 // extremes (alpha -> 0, grazing directions).
 #include <gtest/gtest.h>
 
 #include <femto/core/properties.h>
-#include <femto/render/microfacet.h>
+#include <femto/scattering/microfacet.h>
 
 #include "chi2.h"
 #include "plugin_util.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <thread>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/plugin.h>
 #include <femto/core/spelling.h>
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <femto/core/properties.h>
-#include <femto/render/ior.h>
+#include <femto/scattering/ior.h>
 
 using namespace femto;
 

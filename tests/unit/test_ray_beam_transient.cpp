@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include <femto/render/time_deposit.h>
+#include <femto/time/time_deposit.h>
 
 #include "ray_beam_test_util.h"
 

@@ -9,7 +9,7 @@
 
 #include <femto/image/image_io.h>
 #include <femto/render/mesh.h>
-#include <femto/render/render_loop.h>
+#include <femto/loop/render_loop.h>
 #include <femto/render/scene.h>
 
 #include "render_test_util.h"

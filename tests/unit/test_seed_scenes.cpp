@@ -23,7 +23,7 @@
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
-#include <femto/render/volumetric.h>
+#include <femto/transport/volumetric.h>
 #include <femto/xml/loader.h>
 
 #include "continuous_pulse_check.h"

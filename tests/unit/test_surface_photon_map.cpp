@@ -10,7 +10,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/constants.h>
 #include <femto/math/pcg32.h>
 #include <transient_beams/surface_photon_map.h>

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include <femto/math/pcg32.h>
-#include <femto/render/time_deposit.h>
+#include <femto/time/time_deposit.h>
 
 namespace femto {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/transform.h>
 
 using namespace femto;

@@ -12,7 +12,7 @@
 #include <string>
 
 #include <femto/image/image_io.h>
-#include <femto/render/transient_film.h>
+#include <femto/film/transient_film.h>
 #include <femto/render/transient_integrator.h>
 
 #include "plugin_util.h"

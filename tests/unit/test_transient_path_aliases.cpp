@@ -10,7 +10,7 @@
 
 #include <femto/image/image_io.h>
 #include <femto/render/integrator.h>
-#include <femto/render/render_loop.h>
+#include <femto/loop/render_loop.h>
 #include <femto/render/scene.h>
 #include <femto/xml/loader.h>
 

@@ -15,8 +15,8 @@
 
 #include <femto/image/image_io.h>
 #include <femto/render/scene.h>
-#include <femto/render/transient_film.h>
-#include <femto/render/transient_tile.h>
+#include <femto/film/transient_film.h>
+#include <femto/film/transient_tile.h>
 #include <femto/xml/loader.h>
 
 #include "continuous_pulse_check.h"

@@ -11,14 +11,14 @@
 #include <random>
 #include <vector>
 
-#include <femto/core/error.h>
-#include <femto/render/npy_volume.h>
+#include <femto/base/error.h>
+#include <femto/film/npy_volume.h>
 #include <femto/view/contact_sheet.h>
 #include <femto/view/display.h>
 #include <femto/view/exposure.h>
 #include <femto/view/running_integral.h>
 #include <femto/view/streak.h>
-#include <femto/view/volume_scan.h>
+#include <femto/film/volume_scan.h>
 
 namespace fs = std::filesystem;
 

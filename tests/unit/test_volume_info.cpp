@@ -1,4 +1,4 @@
-// The sidecar of a transient volume (<stem>.json, render/volume_info.h): the
+// The sidecar of a transient volume (<stem>.json, film/volume_info.h): the
 // film writes its time window and crop there, readers get them back, and a
 // broken sidecar is an error naming the file and line. Also the small JSON
 // reader it uses (core/flat_json.h).
@@ -6,9 +6,9 @@
 
 #include <fstream>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/flat_json.h>
-#include <femto/render/volume_info.h>
+#include <femto/film/volume_info.h>
 
 #include "plugin_util.h"
 #include "transient_film_test_util.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include <femto/core/plugin.h>
-#include <femto/render/npy_volume.h>
+#include <femto/film/npy_volume.h>
 #include <femto/render/scene.h>
 
 #include "render_test_util.h"

@@ -127,7 +127,7 @@ out=docs/BENCHMARKS.md
   binning, infinite horizon), so against `path` it pays for its per-segment
   bookkeeping: the OPL (a double multiply-add), horizon tests and medium
   pointer tests. Its light connections go through `connect`
-  (render/volumetric.h), which in a scene without pass-through surfaces
+  (transport/volumetric.h), which in a scene without pass-through surfaces
   (media boundaries) is, outside media, one occlusion ray as in `path`.
   Before that shortcut every connection computed a full intersection (to
   find boundaries to cross), and transient_path took 1.05-1.15x the CPU time

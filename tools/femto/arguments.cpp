@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include <femto/analysis/compare_files.h>
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/image/image_io.h>
 
 #include "commands.h"

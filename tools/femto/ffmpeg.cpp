@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto::cli {
 

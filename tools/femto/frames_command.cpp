@@ -8,15 +8,15 @@
 
 #include <tbb/parallel_for.h>
 
-#include <femto/core/error.h>
-#include <femto/render/npy_volume.h>
-#include <femto/render/transient_output.h>
-#include <femto/render/volume_info.h>
+#include <femto/base/error.h>
+#include <femto/film/npy_volume.h>
+#include <femto/film/transient_output.h>
+#include <femto/film/volume_info.h>
 #include <femto/view/contact_sheet.h>
 #include <femto/view/display.h>
 #include <femto/view/frame_label.h>
 #include <femto/view/running_integral.h>
-#include <femto/view/volume_scan.h>
+#include <femto/film/volume_scan.h>
 
 #include "arguments.h"
 #include "commands.h"

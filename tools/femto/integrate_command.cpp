@@ -4,8 +4,8 @@
 #include <iostream>
 #include <memory>
 
-#include <femto/render/npy_volume.h>
-#include <femto/render/volume_info.h>
+#include <femto/film/npy_volume.h>
+#include <femto/film/volume_info.h>
 #include <femto/view/running_integral.h>
 
 #include "commands.h"

@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/plugin.h>
 
 #include "commands.h"

@@ -1,6 +1,6 @@
 #include <filesystem>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/plugin.h>
 
 #include "commands.h"

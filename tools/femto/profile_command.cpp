@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include <femto/core/error.h>
-#include <femto/render/npy_volume.h>
-#include <femto/render/volume_info.h>
+#include <femto/base/error.h>
+#include <femto/film/npy_volume.h>
+#include <femto/film/volume_info.h>
 #include <femto/view/exposure.h>
 
 #include "commands.h"

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <memory>
 
-#include <femto/core/error.h>
-#include <femto/render/npy_volume.h>
+#include <femto/base/error.h>
+#include <femto/film/npy_volume.h>
 #include <femto/view/display.h>
 #include <femto/view/streak.h>
 

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <string_view>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto::cli {
 namespace {

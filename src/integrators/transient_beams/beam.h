@@ -5,12 +5,12 @@
 // photon points and beams", sec. 5; made transient by Marco, Jarosz, Gutierrez,
 // Jarabo 2017, "Transient Photon Beams").
 //
-// Time is optical path length (OPL, scene units, see femto/render/time_grid.h).
+// Time is optical path length (OPL, scene units, see femto/time/time_grid.h).
 #include <cstdint>
 
 #include <femto/math/ray.h>
 #include <femto/math/vector.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 class Medium;

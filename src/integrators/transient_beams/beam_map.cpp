@@ -22,7 +22,7 @@
 
 #include <tbb/parallel_invoke.h>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/bbox.h>
 
 namespace femto::beams {

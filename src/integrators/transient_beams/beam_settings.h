@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/properties.h>
 #include <femto/math/bbox.h>
 #include <transient_beams/beam.h>

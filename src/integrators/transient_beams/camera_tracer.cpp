@@ -4,12 +4,12 @@
 
 #include <femto/math/constants.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/direct_lighting.h>
+#include <femto/transport/direct_lighting.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
-#include <femto/render/volumetric.h>
+#include <femto/transport/volumetric.h>
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
 #include <transient_beams/ray_point.h>

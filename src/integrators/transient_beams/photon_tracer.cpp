@@ -11,7 +11,7 @@
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
-#include <femto/render/volumetric.h>
+#include <femto/transport/volumetric.h>
 #include <transient_beams/medium_extent.h>
 
 namespace femto::beams {
@@ -119,7 +119,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   ph.opl = 0.0;
   // Light from infinitely far away has no finite path: transient_path's
   // next-event estimation counts a shadow ray toward such an emitter only up
-  // to the last surface it crosses (render/volumetric.cpp, connect), i.e.
+  // to the last surface it crosses (transport/volumetric.cpp, connect), i.e.
   // its light is at OPL 0 on the outermost surface toward the emitter. A
   // photon from the emission disk first meets exactly that surface, so its
   // clock starts there rather than on the disk (which would delay it by the

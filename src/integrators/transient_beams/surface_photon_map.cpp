@@ -6,7 +6,7 @@
 #include <cmath>
 #include <utility>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/bbox.h>
 
 namespace femto::beams {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include <femto/math/vector.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto::beams {
 

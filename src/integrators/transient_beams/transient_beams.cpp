@@ -47,9 +47,10 @@
 
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
-#include <femto/render/render_loop.h>
+#include <femto/loop/render_loop.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/film/transient_render.h>
 #include <femto/render/transient_integrator.h>
 #include <transient_beams/beam_pass.h>
 #include <transient_beams/beam_settings.h>

@@ -1,7 +1,7 @@
 // conductor: a smooth metal, a perfect specular reflector whose reflectance
 // is the exact unpolarised Fresnel reflectance of a conductor with complex
-// index of refraction eta + i k (render/fresnel.h). The optical constants come
-// from a named material (RGB table in render/fresnel.cpp; "none" is an ideal
+// index of refraction eta + i k (scattering/fresnel.h). The optical constants come
+// from a named material (RGB table in scattering/fresnel.cpp; "none" is an ideal
 // mirror) or are given directly. One-sided, as in Mitsuba: light from below
 // the shading surface is absorbed.
 //
@@ -14,9 +14,9 @@
 // | specular_reflectance | rgb or texture  | 1       | scale of the reflectance (not physical)                             | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/conductor_ior.h>
-#include <femto/render/fresnel.h>
-#include <femto/render/smooth_interface.h>
+#include <femto/scattering/conductor_ior.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/transport/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {

@@ -19,8 +19,8 @@
 // | specular_transmittance | rgb or texture  | 1       | scale of the transmitted part (not physical)   | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/fresnel.h>
-#include <femto/render/smooth_interface.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/transport/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {

@@ -28,8 +28,8 @@
 #include <femto/core/plugin.h>
 #include <femto/math/warp.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/fresnel.h>
-#include <femto/render/smooth_interface.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/transport/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {

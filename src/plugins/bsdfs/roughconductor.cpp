@@ -4,7 +4,7 @@
 //   f(wi, wo) = R F(wi.h) D(h) G(wi, wo, h) / (4 cos(theta_i) cos(theta_o)),
 // h the half vector. One-sided like Mitsuba's: light below the shading
 // surface is absorbed. Sampled through the visible normals (or D cos) of the
-// microfacet distribution (render/microfacet.h).
+// microfacet distribution (scattering/microfacet.h).
 //
 // | name                 | type           | default  | meaning                                                   | unit |
 // |----------------------|----------------|----------|-----------------------------------------------------------|------|
@@ -18,9 +18,9 @@
 // | specular_reflectance | rgb or texture | 1        | factor on the reflectance (not physical; for artists)     | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/conductor_ior.h>
-#include <femto/render/fresnel.h>
-#include <femto/render/microfacet.h>
+#include <femto/scattering/conductor_ior.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/scattering/microfacet.h>
 #include <femto/render/texture.h>
 
 namespace femto {

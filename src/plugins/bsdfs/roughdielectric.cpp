@@ -29,10 +29,10 @@
 
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/fresnel.h>
-#include <femto/render/ior.h>
-#include <femto/render/microfacet.h>
-#include <femto/render/smooth_interface.h>
+#include <femto/scattering/fresnel.h>
+#include <femto/scattering/ior.h>
+#include <femto/scattering/microfacet.h>
+#include <femto/transport/smooth_interface.h>
 #include <femto/render/texture.h>
 
 namespace femto {

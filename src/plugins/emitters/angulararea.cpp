@@ -1,6 +1,6 @@
 // angulararea: mitransient's area light with an angular profile. A shape
 // emits radiance from its front side, scaled by a spot light's falloff
-// (render/cone_falloff.h) of the angle between the emitted direction and the
+// (lights/cone_falloff.h) of the angle between the emitted direction and the
 // surface normal: full within beam_width, falling linearly in angle to zero
 // at cutoff_angle. With cutoff_angle 90 and beam_width 90 it is `area`.
 // Next-event estimation samples the shape uniformly by area (as `area`);
@@ -16,10 +16,10 @@
 #include <femto/core/plugin.h>
 #include <femto/math/frame.h>
 #include <femto/math/warp.h>
-#include <femto/render/cone_falloff.h>
+#include <femto/lights/cone_falloff.h>
 #include <femto/render/emitter.h>
 #include <femto/render/shape.h>
-#include <femto/render/shape_direction_sampling.h>
+#include <femto/transport/shape_direction_sampling.h>
 
 namespace femto {
 

@@ -11,7 +11,7 @@
 #include <femto/math/warp.h>
 #include <femto/render/emitter.h>
 #include <femto/render/shape.h>
-#include <femto/render/shape_direction_sampling.h>
+#include <femto/transport/shape_direction_sampling.h>
 
 namespace femto {
 

@@ -1,7 +1,7 @@
 // constant: an environment of uniform radiance surrounding the scene, seen by
 // every ray that escapes. Sampled uniformly over the sphere of directions.
 // Its emitted rays and power cover the scene's bounding sphere (see
-// render/distant_emission.h).
+// transport/distant_emission.h).
 //
 // | name            | type  | default | meaning                                      | unit                     |
 // |-----------------|-------|---------|----------------------------------------------|--------------------------|
@@ -9,7 +9,7 @@
 // | sampling_weight | float | 1       | relative probability of being picked for NEE | -                        |
 #include <femto/core/plugin.h>
 #include <femto/math/warp.h>
-#include <femto/render/distant_emission.h>
+#include <femto/transport/distant_emission.h>
 #include <femto/render/emitter.h>
 
 namespace femto {

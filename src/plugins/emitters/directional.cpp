@@ -1,7 +1,7 @@
 // directional: light from infinitely far away arriving along one direction
 // (the sun), delivering `irradiance` to a surface facing it. Delta in
 // direction: found only by next-event estimation. Its emitted rays and power
-// cover the scene's bounding sphere (see render/distant_emission.h).
+// cover the scene's bounding sphere (see transport/distant_emission.h).
 //
 // | name            | type      | default  | meaning                                              | unit      |
 // |-----------------|-----------|----------|------------------------------------------------------|-----------|
@@ -11,7 +11,7 @@
 // | sampling_weight | float     | 1        | relative probability of being picked for NEE         | -         |
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
-#include <femto/render/distant_emission.h>
+#include <femto/transport/distant_emission.h>
 #include <femto/render/emitter.h>
 
 namespace femto {

@@ -25,7 +25,7 @@
 #include <femto/image/texel_lookup.h>
 #include <femto/math/distribution.h>
 #include <femto/math/transform.h>
-#include <femto/render/distant_emission.h>
+#include <femto/transport/distant_emission.h>
 #include <femto/render/emitter.h>
 
 namespace femto {

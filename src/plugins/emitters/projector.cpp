@@ -26,7 +26,7 @@
 
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
-#include <femto/render/oriented_point_emitter.h>
+#include <femto/lights/oriented_point_emitter.h>
 #include <femto/render/texture.h>
 
 namespace femto {

@@ -19,8 +19,8 @@
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
 #include <femto/math/warp.h>
-#include <femto/render/cone_falloff.h>
-#include <femto/render/oriented_point_emitter.h>
+#include <femto/lights/cone_falloff.h>
+#include <femto/lights/oriented_point_emitter.h>
 #include <femto/render/texture.h>
 
 namespace femto {

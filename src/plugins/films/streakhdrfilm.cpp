@@ -16,7 +16,7 @@
 // bin_width_time in seconds) is as for `transient`. Giving a name and its
 // newer alias (time and num_bins) is an error.
 #include <femto/core/plugin.h>
-#include <femto/render/transient_film.h>
+#include <femto/film/transient_film.h>
 
 namespace femto {
 

@@ -25,6 +25,6 @@
 // arrives before the horizon, i.e. the window's end plus the time filter's
 // reach; with complete_steady all light), <stem>_before.exr and <stem>_after.exr.
 #include <femto/core/plugin.h>
-#include <femto/render/transient_film.h>
+#include <femto/film/transient_film.h>
 
 FEMTO_EXPORT_PLUGIN(femto::TransientFilm, Film, "transient", "time-resolved film: .npy volume, EXR frames, steady EXR")

@@ -12,7 +12,7 @@
 // mitransient takes the time filter from the integrator (temporal_filter,
 // gaussian_stddev); the scene hands it to this film (docs/coming-from-mitransient.md).
 #include <femto/core/plugin.h>
-#include <femto/render/transient_film.h>
+#include <femto/film/transient_film.h>
 
 namespace femto {
 

@@ -15,7 +15,7 @@
 // | dimension    | integer | 4       | Mitsuba 0.x: dimensions with low-discrepancy samples; femto pads all |
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
-#include <femto/render/sample_sequences.h>
+#include <femto/transport/sample_sequences.h>
 
 namespace femto {
 

@@ -15,7 +15,7 @@
 
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
-#include <femto/render/sample_sequences.h>
+#include <femto/transport/sample_sequences.h>
 
 namespace femto {
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 namespace {

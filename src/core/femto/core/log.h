@@ -3,7 +3,7 @@
 // by the caller (see SceneLoader's strict mode); this only prints.
 #include <string>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <stdexcept>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/log.h>
 #include <femto/core/spelling.h>
 

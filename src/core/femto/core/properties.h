@@ -10,11 +10,11 @@
 #include <variant>
 #include <vector>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/core/object.h>
 #include <femto/math/transform.h>
 #include <femto/math/vector.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

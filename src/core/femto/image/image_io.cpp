@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <exception>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 namespace {

@@ -2,7 +2,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 

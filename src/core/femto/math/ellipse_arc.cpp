@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto {
 namespace {

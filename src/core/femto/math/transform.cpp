@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 #include <femto/math/constants.h>
 
 namespace femto {

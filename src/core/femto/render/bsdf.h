@@ -6,8 +6,8 @@
 
 #include <femto/core/object.h>
 #include <femto/render/interaction.h>
-#include <femto/render/scattering_delay.h>
-#include <femto/render/spectrum.h>
+#include <femto/time/scattering_delay.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 
@@ -54,7 +54,7 @@ class BSDF : public Object {
   bool hasSmooth() const { return (flags() & BSDFFlags::Smooth) != 0; }
   bool isDeltaOnly() const { return (flags() & BSDFFlags::Smooth) == 0; }
 
-  /// Every BSDF takes `delay` and `lifetime` (render/scattering_delay.h):
+  /// Every BSDF takes `delay` and `lifetime` (time/scattering_delay.h):
   /// time spent in each scattering event at the surface (0 by default).
   void readCommonParameters(const Properties& props) override { delay_ = ScatteringDelay(props); }
   bool hasDelay() const { return delay_.any(); }
@@ -64,5 +64,9 @@ class BSDF : public Object {
  private:
   ScatteringDelay delay_;
 };
+
+/// An index-matched boundary (no BSDF, or a null one): paths cross it
+/// straight on and it only changes the medium (transport/volumetric.h).
+inline bool isPassThrough(const BSDF* bsdf) { return !bsdf || bsdf->flags() == BSDFFlags::Null; }
 
 }  // namespace femto

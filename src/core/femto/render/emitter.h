@@ -6,9 +6,9 @@
 
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
-#include <femto/render/emission_pulse.h>
+#include <femto/time/emission_pulse.h>
 #include <femto/render/interaction.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

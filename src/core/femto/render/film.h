@@ -10,6 +10,7 @@
 #include <femto/math/vector.h>
 #include <femto/render/image_block.h>
 #include <femto/render/rfilter.h>
+#include <femto/time/time_deposit.h>
 
 namespace femto {
 
@@ -30,6 +31,12 @@ class Film : public Object {
   virtual void develop(const ImageBlock& image, const std::filesystem::path& path) const = 0;
   /// Default output file extension (".exr").
   virtual std::string defaultExtension() const { return ".exr"; }
+  /// Does the film have a time axis (only transient integrators can fill it)?
+  virtual bool timeResolved() const { return false; }
+  /// mitransient gives the time filter to the integrator (temporal_filter);
+  /// the scene hands it to the film when it is built. Steady films have no
+  /// time axis and ignore it; see TransientFilm.
+  virtual void useIntegratorTimeFilter(const TimeFilter&, const SourceLocation&) {}
 
   /// The developed crop window of `image` (sum / weight per pixel), RGB.
   Bitmap developCrop(const ImageBlock& image) const;

@@ -9,7 +9,7 @@
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
 #include <femto/math/ray.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

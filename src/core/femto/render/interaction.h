@@ -5,7 +5,7 @@
 #include <femto/math/constants.h>
 #include <femto/math/frame.h>
 #include <femto/math/ray.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

@@ -21,7 +21,7 @@
 #include <femto/core/properties.h>
 #include <femto/math/ray.h>
 #include <femto/render/phase.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

@@ -8,11 +8,11 @@
 //
 // Scattering may take time (fluorescence-like lifetimes, transient RTE of
 // Marco et al., "Transient Photon Beams", eq. 2): every phase function reads
-// `delay` and `lifetime` (render/scattering_delay.h).
+// `delay` and `lifetime` (time/scattering_delay.h).
 #include <femto/core/object.h>
 #include <femto/core/properties.h>
 #include <femto/math/vector.h>
-#include <femto/render/scattering_delay.h>
+#include <femto/time/scattering_delay.h>
 
 namespace femto {
 

@@ -5,9 +5,8 @@
 #include <femto/render/default_child.h>
 #include <femto/render/detail/embree_accel.h>
 #include <femto/render/shape_group.h>
-#include <femto/render/transient_film.h>
 #include <femto/render/transient_integrator.h>
-#include <femto/render/volumetric.h>
+#include <femto/render/bsdf.h>
 
 namespace femto {
 
@@ -41,8 +40,7 @@ Scene::Scene(const Properties& props) {
   // mitransient gives the time filter to the integrator; femto's film owns it.
   if (auto* transient = dynamic_cast<const TransientIntegrator*>(integrator_.get()))
     if (const auto& filter = transient->requestedTimeFilter())
-      if (auto* film = dynamic_cast<TransientFilm*>(&sensor_->film()))
-        film->useIntegratorTimeFilter(*filter, transient->requestedTimeFilterAt());
+      sensor_->film().useIntegratorTimeFilter(*filter, transient->requestedTimeFilterAt());
 
   // A shapegroup is only seen through its instances (whose hits report the
   // group's shapes, so those decide what paths may cross).

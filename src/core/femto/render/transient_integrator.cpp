@@ -1,74 +1,11 @@
 #include <femto/render/transient_integrator.h>
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
-#include <femto/core/error.h>
-#include <femto/render/emitter.h>
-#include <femto/render/render_loop.h>
-#include <femto/render/scene.h>
-#include <femto/render/transient_film.h>
-#include <femto/render/transient_output.h>
-#include <femto/render/transient_tile.h>
+#include <femto/base/error.h>
 
 namespace femto {
-namespace {
-
-/// Steady films: the time of arrival is irrelevant, contributions are summed
-/// (no bookkeeping, so the cost is that of a SamplingIntegrator).
-class SumRecorder final : public RadianceRecorder {
- public:
-  void add(double, const Color3f& value) override { sum += value; }
-  void addInterval(double, double, const Color3f& value) override { sum += value; }
-  // Pulses are normalised (continuous: its steady image is the total), so the steady value is the sum.
-  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
-  double horizon() const override { return std::numeric_limits<double>::infinity(); }
-  const TimeGrid& timeGrid() const override { return grid_; }
-  Color3f sum{0.0f};
-
- private:
-  TimeGrid grid_;  // bins == 0: steady
-};
-
-/// Refuse, before rendering, pulses the film cannot deposit exactly.
-void checkEmitterPulses(const Scene& scene, const TransientFilm& film) {
-  if (film.timeFilter().type() == TimeFilter::Type::Box) return;
-  for (const auto& emitter : scene.emitters())
-    if (emitter->pulse().type() == EmissionPulse::Type::Gaussian)
-      throw Error(str(emitter->toString(), (emitter->id().empty() ? "" : " (id \"" + emitter->id() + "\")"),
-                      " has a gaussian pulse, which needs the transient film's time_filter \"box\", not \"",
-                      film.timeFilter().name(), "\": the pulse already smooths in time (widen it instead)"));
-}
-
-RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const RenderOptions& options, int passes,
-                            const TransientPassFunction& passIntegrator) {
-  checkEmitterPulses(scene, film);
-  TransientOutput output(film, options.output);
-  RenderStats stats;
-  for (int pass = 0; pass < passes; ++pass) {
-    std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
-    TransientRenderContext context{scene, *integrator, film.timeDeposit()};
-    auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
-      return std::make_unique<TransientTile>(offset, size, context);
-    };
-    auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile), pass); };
-    RenderOptions passOptions = options;
-    passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume));
-    if (!stats.completed) break;
-  }
-  // Frames are written in parallel: with the thread count the user asked for.
-  if (options.threads > 0)
-    tbb::task_arena(options.threads).execute([&] { output.finish(); });
-  else
-    output.finish();
-  return stats;
-}
-
-}  // namespace
 
 void RadianceRecorder::addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) {
   if (!pulse.isDelta()) throw Error(str("this radiance recorder cannot deposit a ", pulse.name(), " emission pulse"));
@@ -76,21 +13,6 @@ void RadianceRecorder::addPulsed(double opl0, double opl1, const Color3f& value,
     add(opl0 + pulse.offset(), value);
   else
     addInterval(opl0 + pulse.offset(), opl1 + pulse.offset(), value);
-}
-
-RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
-                                  const TransientPassFunction& passIntegrator) {
-  if (auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film()))
-    return renderTransient(scene, *film, options, passes, passIntegrator);
-  return renderSteadyPasses(scene, options, passes, [&](int pass) -> CameraRadianceFunction {
-    std::shared_ptr<const TransientIntegrator> integrator =
-        passIntegrator(pass, std::numeric_limits<double>::infinity());
-    return [&scene, integrator](const Ray& ray, Sampler& sampler) {
-      SumRecorder recorder;
-      integrator->sample(scene, ray, sampler, recorder);
-      return recorder.sum;
-    };
-  });
 }
 
 void TransientIntegrator::readTemporalFilter(const Properties& props) {
@@ -106,12 +28,6 @@ void TransientIntegrator::readTemporalFilter(const Properties& props) {
     props.raise("temporal_filter", str("expected \"box\", \"gaussian\" or \"\" (the film's own), got \"", type, "\""));
   }
   requestedTimeFilterAt_ = props.location("temporal_filter");
-}
-
-RenderStats TransientIntegrator::render(const Scene& scene, const RenderOptions& options) const {
-  // Not owned: the pass function hands out this integrator itself.
-  std::shared_ptr<const TransientIntegrator> self(std::shared_ptr<void>(), this);
-  return renderTransientPasses(scene, options, 1, [&](int, double) { return self; });
 }
 
 }  // namespace femto

@@ -4,7 +4,7 @@
 #include <femto/core/object.h>
 #include <femto/math/bbox.h>
 #include <femto/math/vector.h>
-#include <femto/render/spectrum.h>
+#include <femto/math/spectrum.h>
 
 namespace femto {
 

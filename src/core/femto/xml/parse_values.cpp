@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto::xml {
 namespace {

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include <femto/core/error.h>
+#include <femto/base/error.h>
 
 namespace femto::xml {
 

@@ -1,0 +1,147 @@
+#include <femto/film/transient_film.h>
+
+#include <cmath>
+
+#include <femto/base/error.h>
+#include <femto/render/rfilter.h>
+
+namespace femto {
+namespace {
+
+/// The name a parameter was given under: `name`, or its older `alias` when
+/// only that is present (both present is an error naming the alias's line).
+std::string spelledName(const Properties& props, const char* name, const char* alias) {
+  if (*alias && props.has(alias)) {
+    if (props.has(name)) props.raise(alias, str("\"", alias, "\" and \"", name, "\" are one parameter: give one of them"));
+    return alias;
+  }
+  return name;
+}
+
+/// The time window, from exactly one of its two forms: optical path length
+/// (under the spelling's names) or seconds (start_time, bin_width_time).
+TimeGrid readTimeGrid(const Properties& props, const TimeAxisSpelling& spelling) {
+  TimeGrid grid;
+  const std::string binsName = spelledName(props, spelling.bins, spelling.binsAlias);
+  const std::string widthOplName = spelledName(props, spelling.binWidth, spelling.binWidthAlias);
+  const std::string startOplName = spelledName(props, spelling.start, spelling.startAlias);
+  int64_t bins = spelling.defaultBins > 0 ? props.getInt(binsName, spelling.defaultBins) : props.getInt(binsName);
+  if (bins < 1 || bins > (1 << 20)) props.raise(binsName, str("must be in [1, 1048576], got ", bins));
+  grid.bins = int(bins);
+  bool opl = props.has(startOplName) || props.has(widthOplName);
+  bool seconds = props.has("start_time") || props.has("bin_width_time");
+  if (opl && seconds)
+    props.raise(props.has("start_time") ? "start_time" : "bin_width_time",
+                str("give the time window either in optical path length (", startOplName, ", ", widthOplName,
+                    ") or in seconds (start_time, bin_width_time), not both"));
+  if (!opl && !seconds && spelling.defaultBinWidth <= 0.0)
+    throw Error(props.location(), str("transient film: missing parameter \"", widthOplName,
+                                      "\" (or \"bin_width_time\" in seconds)"));
+  const std::string startName = seconds ? "start_time" : startOplName;
+  const std::string widthName = seconds ? "bin_width_time" : widthOplName;
+  // Seconds become OPL in metres: the scene's units are taken to be metres.
+  double scale = seconds ? SpeedOfLight : 1.0;
+  grid.start = double(props.getFloat(startName, 0.0f)) * scale;
+  grid.binWidth = spelling.defaultBinWidth > 0.0 && !seconds
+                      ? double(props.getFloat(widthName, float(spelling.defaultBinWidth)))
+                      : double(props.getFloat(widthName)) * scale;
+  if (!std::isfinite(grid.start)) props.raise(startName, "must be finite");
+  if (!(grid.binWidth > 0.0) || !std::isfinite(grid.binWidth))
+    props.raise(widthName, str("must be positive, got ", props.getFloat(widthName, 0.0f)));
+  return grid;
+}
+
+/// Mitsuba 2's streak film: a pixel filter used along time, in bins.
+TimeFilter timeFilterFromPixelFilter(const ReconstructionFilter& filter, const Properties& props) {
+  using Type = ReconstructionFilter::Profile::Type;
+  ReconstructionFilter::Profile profile = filter.profile();
+  auto refuse = [&](const std::string& why) -> TimeFilter {
+    throw Error(props.location("tfilter"), str("<rfilter name=\"tfilter\">: ", why));
+  };
+  switch (profile.type) {
+    case Type::Box:
+      // femto's box time filter puts each contribution in its own bin, which
+      // is a box of radius half a bin; a wider box has no counterpart.
+      if (std::abs(profile.width - 0.5f) > 1e-6f)
+        return refuse(str("a box of radius ", profile.width,
+                          " bins is not supported: the box time filter is one bin wide (radius 0.5); "
+                          "use a tent or gaussian tfilter to spread contributions over neighbouring bins"));
+      return TimeFilter::box();
+    case Type::Tent: return TimeFilter::tent(profile.width);
+    case Type::Gaussian: return TimeFilter::gaussian(profile.width);
+    case Type::Other: break;
+  }
+  return refuse(str(filter.toString(), " has no time-filter counterpart: use box, tent or gaussian"));
+}
+
+TimeFilter readTimeFilter(const Properties& props, const TimeAxisSpelling& spelling) {
+  if (spelling.nestedTimeFilter && props.has("tfilter")) {
+    auto filter = std::dynamic_pointer_cast<ReconstructionFilter>(props.getObject("tfilter"));
+    if (!filter) props.raise("tfilter", "must be an <rfilter>");
+    return timeFilterFromPixelFilter(*filter, props);
+  }
+  std::string type = props.getString("time_filter", "box");
+  if (type == "box") return TimeFilter::box();
+  if (type != "tent" && type != "gaussian")
+    props.raise("time_filter", str("expected \"box\", \"tent\" or \"gaussian\", got \"", type, "\""));
+  float width = props.getFloat("time_filter_width", type == "tent" ? 1.0f : 0.5f);
+  if (!(width > 0.0f) || !std::isfinite(width)) props.raise("time_filter_width", str("must be positive (bins), got ", width));
+  return type == "tent" ? TimeFilter::tent(width) : TimeFilter::gaussian(width);
+}
+
+/// Where the scene chose the film's time filter (empty when it did not).
+SourceLocation timeFilterLocation(const Properties& props, const TimeAxisSpelling& spelling) {
+  if (spelling.nestedTimeFilter && props.has("tfilter")) return props.location("tfilter");
+  if (props.has("time_filter")) return props.location("time_filter");
+  return {};
+}
+
+}  // namespace
+
+TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& spelling)
+    : Film(props, "box", spelling.nestedTimeFilter ? "tfilter" : ""),
+      deposit_(readTimeGrid(props, spelling), readTimeFilter(props, spelling), props.getBool("complete_steady", false)),
+      timeFilterGivenAt_(timeFilterLocation(props, spelling)) {
+  // Tiles are written out as soon as they are done, so they must not share
+  // pixels: a filter reaching past the pixel a sample falls in would need the
+  // neighbouring tiles too (see docs/transient-film.md).
+  if (filter()->radius() > 0.5f)
+    throw Error(props.location(), str("transient film: the pixel reconstruction filter has radius ", filter()->radius(),
+                                      " pixels; transient films stream non-overlapping tiles to disk and need "
+                                      "<rfilter type=\"box\"/> (radius <= 0.5)"));
+  // Mitsuba 3's sample_border (0.6: high_quality_edges) lets samples outside
+  // the crop window reach its edge pixels through the filter; with the box
+  // filter above no sample reaches past its own pixel, so it changes nothing.
+  props.getBool("sample_border", false);
+  props.getBool("high_quality_edges", false);
+  writeVolume_ = props.getBool("write_volume", true);
+  writeFrames_ = props.getBool("write_frames", true);
+}
+
+void TransientFilm::useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where) {
+  const TimeFilter& own = deposit_.filter();
+  if (timeFilterGivenAt_.known() && (own.type() != filter.type() || own.width() != filter.width()))
+    throw Error(where, str("the integrator's temporal_filter (", filter.name(), ") differs from the time filter the film gives at ",
+                           timeFilterGivenAt_.toString(), " (", own.name(), "): give it in one place"));
+  deposit_ = TimeDeposit(deposit_.grid(), filter, deposit_.unboundedHorizon());
+}
+
+TransientFilm::OutputPaths TransientFilm::outputPaths(const std::filesystem::path& path) const {
+  std::filesystem::path base = path;
+  base.replace_extension();
+  auto with = [&](const std::string& suffix) { return std::filesystem::path(base.string() + suffix); };
+  return {with(".npy"), with(".exr"), with("_before.exr"), with("_after.exr"), with("_frames")};
+}
+
+void TransientFilm::develop(const ImageBlock&, const std::filesystem::path&) const {
+  throw Error("a transient film can only be rendered by a transient integrator (e.g. transient_path)");
+}
+
+std::string TransientFilm::toString() const {
+  const TimeGrid& g = timeGrid();
+  return str("TransientFilm[size=", size().x, "x", size().y, ", crop=", cropSize().x, "x", cropSize().y, "+",
+             cropOffset().x, "+", cropOffset().y, ", bins=", g.bins, ", start_opl=", g.start, ", bin_width_opl=",
+             g.binWidth, ", time_filter=", timeFilter().name(), "]");
+}
+
+}  // namespace femto

@@ -1,0 +1,65 @@
+#pragma once
+// The files of one transient render, written as the render goes: finished
+// tiles (in tile order) go straight into the .npy volume at their offsets and
+// are then freed; the steady, before and after images (one RGB value per
+// pixel, small) are kept and written at the end, followed by one EXR frame per
+// time bin read back from the volume a batch of frames at a time. Memory stays
+// bounded by the tiles in flight plus a fixed frame budget, whatever the
+// number of bins.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <femto/image/image_io.h>
+#include <femto/film/npy_volume.h>
+#include <femto/film/transient_film.h>
+#include <femto/film/transient_tile.h>
+#include <femto/film/volume_info.h>
+
+namespace femto {
+
+class TransientOutput {
+ public:
+  /// `path` as given to the render (see TransientFilm::outputPaths); empty:
+  /// nothing is written, the images are only kept in memory.
+  TransientOutput(const TransientFilm& film, const std::filesystem::path& path);
+  ~TransientOutput();
+
+  /// Normalise a finished tile and store it (volume rows to disk, steady,
+  /// before and after into the images). Pass `pass` > 0 of a progressive
+  /// render folds the tile into what earlier passes stored as a running mean,
+  /// old + (new - old) / (pass + 1), reading the volume rows back.
+  void consume(TransientTile& tile, int pass = 0);
+  /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
+  /// volume in place. Call once, after the last tile (also after a cancel).
+  void finish();
+
+  /// Developed crop-window images (valid for consumed tiles).
+  const Bitmap& steady() const { return steady_; }
+  const Bitmap& before() const { return before_; }
+  const Bitmap& after() const { return after_; }
+
+ private:
+  /// The volume's sidecar (<stem>.json: time window, crop; volume_info.h).
+  VolumeInfo volumeInfo() const;
+
+  const TransientFilm& film_;
+  std::optional<TransientFilm::OutputPaths> paths_;
+  std::filesystem::path volumeTmp_;
+  std::optional<NpyVolume> volume_;
+  Bitmap steady_, before_, after_;
+};
+
+/// Write one EXR per time bin of `volume` into `dir` (frame_00000.exr, ...;
+/// stale frame_*.exr files there are removed first), reading the volume
+/// again for each batch of frames that fits in `budgetBytes`.
+void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes);
+
+/// "frame_00042" + extension: the file of `bin` among `bins` (at least five
+/// digits, zero-padded, so names sort in time order).
+std::string frameFileName(int bin, int bins, const std::string& extension);
+/// Remove frame_*<extension> files from `dir` (left by an earlier, longer sequence).
+void removeStaleFrames(const std::filesystem::path& dir, const std::string& extension);
+
+}  // namespace femto

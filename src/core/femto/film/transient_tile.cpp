@@ -1,0 +1,122 @@
+#include <femto/film/transient_tile.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/render/emitter.h>
+#include <femto/render/scene.h>
+
+namespace femto {
+namespace {
+
+void addScaled(float* dst, const Color3f& value, double share) {
+  dst[0] += float(value.r * share);
+  dst[1] += float(value.g * share);
+  dst[2] += float(value.b * share);
+}
+
+}  // namespace
+
+double pulsedHorizon(const TimeDeposit& deposit, const Scene& scene) {
+  double earliest = 0.0;
+  bool any = false;
+  for (const auto& emitter : scene.emitters()) {
+    earliest = any ? std::min(earliest, emitter->pulse().earliest()) : emitter->pulse().earliest();
+    any = true;
+  }
+  return deposit.horizon() - earliest;
+}
+
+void TransientSampleRecorder::addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) {
+  const double horizon = deposit_.horizon();
+  double lo = std::min(opl0, opl1), hi = std::max(opl0, opl1);
+  if (!pulse.isDelta()) {
+    if (lo + pulse.earliest() >= horizon) return;  // NaN is kept, for valid() to refuse
+    contributions_.push_back({lo, hi, value, pulse});
+    hasSteps_ |= pulse.isContinuous();
+    return;
+  }
+  lo += pulse.offset(), hi += pulse.offset();
+  if (lo >= horizon) return;
+  // The value is spread uniformly over [lo, hi]: keep the part before the horizon.
+  if (hi > horizon) {
+    contributions_.push_back({lo, horizon, value * float((horizon - lo) / (hi - lo)), EmissionPulse()});
+    return;
+  }
+  contributions_.push_back({lo, hi, value, EmissionPulse()});
+}
+
+bool TransientSampleRecorder::valid(const Color3f& weight) const {
+  for (const Contribution& c : contributions_)
+    if (!(weight * c.value).isValid() || !std::isfinite(c.opl0) || !std::isfinite(c.opl1)) return false;
+  return true;
+}
+
+void TransientSampleRecorder::commit(const Color3f& weight, float* bins, float* steady, float* before, float* after,
+                                     float* steps) {
+  for (const Contribution& c : contributions_) {
+    Color3f value = weight * c.value;
+    if (value.isBlack()) continue;
+    deposit_.pulsed(c.opl0, c.opl1, c.pulse, shares_);
+    for (size_t k = 0; k < shares_.weights.size(); ++k)
+      addScaled(bins + (size_t(shares_.first) + k) * 3, value, shares_.weights[k]);
+    if (shares_.stepFrom >= 0) addScaled(steps + size_t(shares_.stepFrom) * 3, value, 1.0);
+    addScaled(steady, value, 1.0);
+    if (shares_.before > 0.0) addScaled(before, value, shares_.before);
+    if (shares_.after > 0.0) addScaled(after, value, shares_.after);
+  }
+}
+
+TransientTile::TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context)
+    : offset_(offset),
+      size_(size),
+      bins_(context.deposit.grid().bins),
+      context_(context),
+      recorder_(context.deposit, pulsedHorizon(context.deposit, context.scene)) {
+  const size_t pixels = size_t(size.x) * size_t(size.y);
+  volume_.assign(pixels * bins_ * 3, 0.0f);
+  steady_.assign(pixels * 3, 0.0f);
+  before_.assign(pixels * 3, 0.0f);
+  after_.assign(pixels * 3, 0.0f);
+  weight_.assign(pixels, 0.0f);
+}
+
+bool TransientTile::addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) {
+  // Same sample order as SamplingIntegrator: aperture sample, then the integrator's.
+  Ray ray;
+  Color3f weight = context_.scene.sensor().sampleRay(pos, sampler.next2D(), ray);
+  recorder_.clear();
+  if (!weight.isBlack()) context_.integrator.sample(context_.scene, ray, sampler, recorder_);
+  if (!recorder_.valid(weight)) return false;
+  // The box pixel filter: the sample counts fully, and only, for its own
+  // pixel; the transient film refuses wider filters.
+  const int x = pixel.x - offset_.x, y = pixel.y - offset_.y;
+  const size_t i = index(x, y);
+  if (recorder_.hasSteps() && steps_.empty()) steps_.assign(volume_.size(), 0.0f);
+  recorder_.commit(weight, binsOf(x, y), &steady_[i * 3], &before_[i * 3], &after_[i * 3],
+                   steps_.empty() ? nullptr : &steps_[i * size_t(bins_) * 3]);
+  weight_[i] += 1.0f;
+  return true;
+}
+
+void TransientTile::normalize() {
+  for (int y = 0; y < size_.y; ++y)
+    for (int x = 0; x < size_.x; ++x) {
+      const size_t i = index(x, y);
+      // One weight for all quantities: the volume's bins then add up to the
+      // steady value minus before and after, to float precision.
+      const float scale = weight_[i] > 0.0f ? 1.0f / weight_[i] : 0.0f;
+      float* b = binsOf(x, y);
+      if (!steps_.empty()) {
+        // Continuous pulses: each step's whole value in every bin from its start on (in double, then once to float).
+        const float* d = &steps_[i * size_t(bins_) * 3];
+        double run[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < bins_; ++k)
+          for (int c = 0; c < 3; ++c) b[k * 3 + c] += float(run[c] += d[k * 3 + c]);
+      }
+      for (int k = 0; k < bins_ * 3; ++k) b[k] *= scale;
+      for (int c = 0; c < 3; ++c) steady_[i * 3 + c] *= scale, before_[i * 3 + c] *= scale, after_[i * 3 + c] *= scale;
+    }
+}
+
+}  // namespace femto

@@ -1,0 +1,105 @@
+#pragma once
+// One tile of a transient render: per pixel the time-binned RGB sums
+// (bins x 3 floats, the .npy's pixel layout), the steady RGB sum, the sums
+// before/after the window, and the sample weight every one of them is later
+// divided by. The recorder buffers one camera sample's contributions and
+// commits them only if all are valid, so a bad sample is dropped whole, as the
+// steady film does.
+#include <vector>
+
+#include <femto/loop/render_loop.h>
+#include <femto/time/time_deposit.h>
+#include <femto/render/transient_integrator.h>
+
+namespace femto {
+
+class Scene;
+class Sensor;
+
+/// The recorder horizon for a scene: the deposit's horizon minus the
+/// earliest offset of any emitter's pulse (a gaussian pulse can make light
+/// arrive before a path's Dirac OPL, a delayed one after it).
+double pulsedHorizon(const TimeDeposit& deposit, const Scene& scene);
+
+/// Records one camera sample's contributions for a transient film.
+class TransientSampleRecorder final : public RadianceRecorder {
+ public:
+  /// `horizon`: see pulsedHorizon (default: the deposit's, for Dirac pulses at 0).
+  explicit TransientSampleRecorder(const TimeDeposit& deposit) : TransientSampleRecorder(deposit, deposit.horizon()) {}
+  TransientSampleRecorder(const TimeDeposit& deposit, double horizon) : deposit_(deposit), horizon_(horizon) {}
+  /// Contributions arriving at or past the deposit's horizon are dropped (the
+  /// part of an interval past it too), whether or not the integrator stops its
+  /// paths there: the steady image and `after` then hold exactly the light
+  /// arriving before the horizon, for any integrator. A non-delta pulse is
+  /// dropped when even its earliest emission arrives past it, else kept whole.
+  void add(double opl, const Color3f& value) override { addPulsed(opl, opl, value, EmissionPulse()); }
+  void addInterval(double opl0, double opl1, const Color3f& value) override {
+    addPulsed(opl0, opl1, value, EmissionPulse());
+  }
+  void addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) override;
+  double horizon() const override { return horizon_; }
+  const TimeGrid& timeGrid() const override { return deposit_.grid(); }
+
+  void clear() { contributions_.clear(), hasSteps_ = false; }
+  /// All values valid (finite, non-negative) after scaling by `weight`, all OPLs finite?
+  bool valid(const Color3f& weight) const;
+  /// Does any contribution come from a continuous pulse (commit needs `steps`)?
+  bool hasSteps() const { return hasSteps_; }
+  /// Add `weight` x the contributions to one pixel: `bins` (bins x 3 floats),
+  /// `steady`, `before`, `after` (RGB each). Continuous pulses add their
+  /// whole value to every bin from some bin on: that is recorded once, in
+  /// `steps` (bins x 3 floats, the derivative of those runs; may be null when
+  /// !hasSteps()), and prefix-summed when the tile is done.
+  void commit(const Color3f& weight, float* bins, float* steady, float* before, float* after, float* steps = nullptr);
+
+ private:
+  struct Contribution {
+    double opl0, opl1;  // equal: a point
+    Color3f value;
+    EmissionPulse pulse;
+  };
+  const TimeDeposit& deposit_;
+  double horizon_;
+  std::vector<Contribution> contributions_;
+  bool hasSteps_ = false;
+  BinShares shares_;
+};
+
+/// Everything a transient tile needs to take samples.
+struct TransientRenderContext {
+  const Scene& scene;
+  const TransientIntegrator& integrator;
+  const TimeDeposit& deposit;
+};
+
+class TransientTile final : public TileAccumulator {
+ public:
+  TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context);
+  bool addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) override;
+
+  const Point2i& offset() const { return offset_; }
+  const Point2i& size() const { return size_; }
+  int bins() const { return bins_; }
+  /// Add the running sums of the continuous-pulse steps to the bins, then
+  /// divide every quantity of every pixel by the pixel's sample weight
+  /// (pixels without samples become 0): the developed values.
+  void normalize();
+  /// Pixel (x, y) relative to the tile: bins x 3 floats; a tile row is contiguous.
+  float* binsOf(int x, int y) { return &volume_[(size_t(y) * size_.x + x) * bins_ * 3]; }
+  const float* row(int y) const { return &volume_[size_t(y) * size_.x * bins_ * 3]; }
+  /// Steady, before and after RGB of pixel (x, y) relative to the tile.
+  const float* steady(int x, int y) const { return &steady_[index(x, y) * 3]; }
+  const float* before(int x, int y) const { return &before_[index(x, y) * 3]; }
+  const float* after(int x, int y) const { return &after_[index(x, y) * 3]; }
+
+ private:
+  size_t index(int x, int y) const { return size_t(y) * size_.x + x; }
+  Point2i offset_, size_;
+  int bins_;
+  const TransientRenderContext& context_;
+  TransientSampleRecorder recorder_;
+  std::vector<float> volume_, steady_, before_, after_, weight_;
+  std::vector<float> steps_;  // continuous-pulse step derivative (bins x 3 per pixel), allocated on first use
+};
+
+}  // namespace femto

@@ -1,0 +1,207 @@
+#include <femto/loop/render_loop.h>
+
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <vector>
+
+#include <femto/core/log.h>
+#include <femto/core/progress.h>
+#include <femto/render/scene.h>
+
+namespace femto {
+namespace {
+
+struct Tile {
+  Point2i offset, size;
+  std::unique_ptr<TileAccumulator> accumulator;
+  uint64_t samples = 0, invalid = 0;
+};
+
+std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size) {
+  std::vector<Tile> tiles;
+  for (int y = 0; y < size.y; y += RenderTileSize)
+    for (int x = 0; x < size.x; x += RenderTileSize) {
+      Tile t;
+      t.offset = Point2i(offset.x + x, offset.y + y);
+      t.size = Point2i(std::min(RenderTileSize, size.x - x), std::min(RenderTileSize, size.y - y));
+      tiles.push_back(std::move(t));
+    }
+  return tiles;
+}
+
+/// Render one tile into its own accumulator. Each pixel restarts the sampler
+/// from (seed, pixel index), so the values do not depend on which thread runs it.
+void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const TileFactory& makeTile) {
+  tile.accumulator = makeTile(tile.offset, tile.size);
+  std::unique_ptr<Sampler> sampler = prototype.clone();
+  const uint32_t spp = prototype.sampleCount();
+  for (int y = tile.offset.y; y < tile.offset.y + tile.size.y; ++y)
+    for (int x = tile.offset.x; x < tile.offset.x + tile.size.x; ++x) {
+      sampler->startPixel(seed, uint64_t(y) * uint64_t(filmWidth) + uint64_t(x));
+      for (uint32_t s = 0; s < spp; ++s) {
+        Point2f jitter = sampler->next2D();
+        Point2f pos(float(x) + jitter.x, float(y) + jitter.y);
+        if (!tile.accumulator->addSample(Point2i(x, y), pos, *sampler)) ++tile.invalid;
+        ++tile.samples;
+        sampler->advance();
+      }
+    }
+}
+
+/// Computes one sample at a film position and splats it into a block;
+/// returns false when the block refused the value as invalid.
+using SplatFunction = std::function<bool(const Point2f& filmPos, Sampler& sampler, ImageBlock& block)>;
+
+/// The image accumulator: one ImageBlock (tile plus filter border).
+class ImageBlockTile final : public TileAccumulator {
+ public:
+  ImageBlockTile(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter, int channels,
+                 const SplatFunction& splatFn)
+      : block(offset, size, filter, channels), splatFn_(splatFn) {}
+  bool addSample(const Point2i&, const Point2f& pos, Sampler& sampler) override { return splatFn_(pos, sampler, block); }
+  ImageBlock block;
+
+ private:
+  const SplatFunction& splatFn_;
+};
+
+}  // namespace
+
+RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
+                             const TileConsumer& consume) {
+  const Film& film = scene.sensor().film();
+  const Sampler& prototype = scene.sensor().sampler();
+  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
+  const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
+  ProgressReporter progress("Rendering", pixelsTotal, options.progress);
+  bool cancelled = false;
+  RenderStats stats;
+
+  auto work = [&] {
+    // A pipeline: tiles enter in order, render in parallel, and leave in
+    // order. The token limit bounds how many tiles exist at once (rendering
+    // or waiting for an earlier tile), which bounds memory for large tiles
+    // (transient films) and keeps the consumer's sums in a fixed order.
+    const size_t tokens = size_t(2 * tbb::this_task_arena::max_concurrency());
+    size_t next = 0;
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, Tile*>(tbb::filter_mode::serial_in_order,
+                                      [&](tbb::flow_control& fc) -> Tile* {
+                                        if (next == tiles.size()) {
+                                          fc.stop();
+                                          return nullptr;
+                                        }
+                                        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                                          cancelled = true;
+                                          fc.stop();
+                                          return nullptr;
+                                        }
+                                        return &tiles[next++];
+                                      }) &
+            tbb::make_filter<Tile*, Tile*>(tbb::filter_mode::parallel,
+                                           [&](Tile* tile) {
+                                             renderTile(*tile, prototype, film.size().x, options.seed, makeTile);
+                                             progress.update(uint64_t(tile->size.x) * uint64_t(tile->size.y));
+                                             return tile;
+                                           }) &
+            tbb::make_filter<Tile*, void>(tbb::filter_mode::serial_in_order, [&](Tile* tile) {
+              consume(*tile->accumulator);
+              tile->accumulator.reset();
+              stats.samples += tile->samples;
+              stats.invalidSamples += tile->invalid;
+            }));
+  };
+  if (options.threads > 0) {
+    tbb::task_arena arena(options.threads);
+    arena.execute(work);
+  } else {
+    work();
+  }
+  progress.finish();
+
+  stats.completed = !cancelled;
+  stats.seconds = progress.elapsedSeconds();
+  if (stats.invalidSamples > 0)
+    logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
+  if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
+  return stats;
+}
+
+namespace {
+
+/// Splat `splatFn` through the film's reconstruction filter into `result`
+/// (crop-window sized block), tiles merged in tile order.
+RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
+                             ImageBlock& result) {
+  const ReconstructionFilter* filter = scene.sensor().film().filter();
+  const int channels = result.channelCount();
+  auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
+    return std::make_unique<ImageBlockTile>(offset, size, filter, channels, splatFn);
+  };
+  // Merged in tile order: the floating-point sums are then the same whatever
+  // the number of threads or the schedule.
+  auto consume = [&](TileAccumulator& tile) { result.merge(static_cast<ImageBlockTile&>(tile).block); };
+  return renderTileStream(scene, options, makeTile, consume);
+}
+
+}  // namespace
+
+RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
+                        ImageBlock& result) {
+  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+    return block.put(pos, sampleFn(pos, sampler));
+  }, result);
+}
+
+RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
+                               ImageBlock& result) {
+  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+    std::vector<float> values(size_t(block.channelCount()), 0.0f);
+    sampleFn(pos, sampler, values.data());
+    return block.put(pos, values.data());
+  }, result);
+}
+
+RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
+                              const CameraRadianceFunction& radiance) {
+  return renderSteadyPasses(scene, options, 1, [&](int) { return radiance; });
+}
+
+uint64_t passSeed(uint64_t seed, int pass) { return pass == 0 ? seed : mixSeed(seed, uint64_t(pass)); }
+
+void accumulatePassStats(RenderStats& total, const RenderStats& pass) {
+  total.samples += pass.samples;
+  total.invalidSamples += pass.invalidSamples;
+  total.seconds += pass.seconds;
+  total.completed = pass.completed;
+}
+
+RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options, int passes,
+                               const PassRadianceFunction& radianceOf) {
+  const Sensor& sensor = scene.sensor();
+  const Film& film = sensor.film();
+  // Every pass splats the same number of samples per pixel into one block:
+  // its developed value (weighted sum / weight sum) is the mean of the passes.
+  ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
+  RenderStats stats;
+  for (int pass = 0; pass < passes; ++pass) {
+    CameraRadianceFunction radiance = radianceOf(pass);
+    auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
+      Ray ray;
+      Color3f weight = sensor.sampleRay(filmPos, sampler.next2D(), ray);
+      if (weight.isBlack()) return Color3f(0.0f);
+      return weight * radiance(ray, sampler);
+    };
+    RenderOptions passOptions = options;
+    passOptions.seed = passSeed(options.seed, pass);
+    accumulatePassStats(stats, renderTiles(scene, passOptions, sampleFn, result));
+    if (!stats.completed) break;
+  }
+  if (!options.output.empty()) film.develop(result, options.output);
+  return stats;
+}
+
+}  // namespace femto

@@ -1,0 +1,308 @@
+// transient_path: unidirectional volumetric path tracing that reports every
+// contribution with the optical path length (OPL, time/time_grid.h) at
+// which it reaches the sensor, so one integrator renders transient films
+// (time-resolved) and steady films alike. Mitsuba's "volpath" scenes load
+// with this integrator (the loader maps the name).
+//
+// Transport (the transient RTE of Marco et al., "Transient Photon Beams",
+// eq. 1-3): free flights are sampled in media (render/medium.h); at every
+// scattering vertex (medium or non-delta surface) one emitter sample is
+// connected through media with their transmittance (ratio tracking in
+// heterogeneous media) and combined with phase/BSDF sampling by multiple
+// importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Paths end by
+// Russian roulette on the throughput, at max_depth, or once their OPL passes
+// the film's horizon.
+//
+// OPL: each segment adds eta times its length, where eta is the refractive
+// index of the medium crossed; where there is no medium it is the IOR of the
+// dielectric the path is inside, tracked as the product of the relative IORs
+// (BSDFSample::eta) of the refractions so far. Phase functions may add a
+// scattering delay (render/phase.h). A next-event contribution's OPL includes
+// the light segment. With observer_time = false the camera segment (sensor to
+// the first scattering vertex) is left out, so wavefronts show where light is
+// rather than when the camera sees it (Marco et al., fig. "with and without
+// observer time"). Every contribution is reported for a Dirac emission at
+// OPL 0 together with its emitter's pulse (Emitter::pulse(): the emitter hit,
+// the one next-event estimation sampled, or each environment emitter), and
+// the film convolves it with the pulse exactly (RadianceRecorder::addPulsed),
+// so pulses cost no extra samples or noise. Emission from environment or
+// directional emitters is recorded at the OPL of the last vertex: light from
+// infinitely far away has no finite path.
+//
+// Depth counts path segments, as in Mitsuba: max_depth = 1 gives only
+// emitters seen directly, 2 adds single scattering and direct illumination.
+//
+// | name            | type    | default | meaning                                            | unit |
+// |-----------------|---------|---------|----------------------------------------------------|------|
+// | max_depth       | integer | -1      | longest path in segments (-1: no limit)            | -    |
+// | rr_depth        | integer | 5       | depth from which Russian roulette may end paths    | -    |
+// | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
+// | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
+// | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
+// | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
+// | gaussian_stddev | float   | 2       | mitransient: its standard deviation (at least 0.5) | bins |
+// | discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray) finds; next-event estimates stay | - |
+// | version         | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
+// | block_size      | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
+//
+// The same source builds mitransient's and Mitsuba 2's names for this
+// integrator as plugins of their own (src/plugins/CMakeLists.txt):
+// `transient_prbvolpath` (mitransient's volumetric path tracer: max_depth
+// defaults to 6, as in mitransient) and `transientpath` (Mitsuba 2's
+// transient path tracer). Their output is that of transient_path with the
+// same parameters, bit for bit.
+#include <cmath>
+
+#include <femto/core/plugin.h>
+#include <femto/render/bsdf.h>
+#include <femto/transport/direct_lighting.h>
+#include <femto/render/medium.h>
+#include <femto/render/sampler.h>
+#include <femto/render/scene.h>
+#include <femto/render/transient_integrator.h>
+#include <femto/transport/volumetric.h>
+
+namespace femto {
+namespace {
+
+/// Index-matched boundaries crossed in a row before a path is abandoned.
+constexpr int kMaxPassThrough = 256;
+
+/// The mutable state of one camera path.
+struct PathState {
+  Ray ray;
+  const Medium* medium = nullptr;
+  float surfaceEta = 1.0f;     // refractive index where there is no medium
+  double opl = 0.0;            // optical path length up to `segmentStart`
+  Point3f segmentStart;        // exact position of the last vertex (camera, scattering or boundary)
+  bool cameraSegment = true;   // no scattering vertex yet
+  Color3f throughput{1.0f};
+  float etaScale = 1.0f;       // product of squared relative IORs (for Russian roulette)
+  int depth = 0;               // segments so far
+  // The last scattering vertex, for weighting emission that phase/BSDF sampling
+  // finds (a camera ray counts as delta: no other strategy finds what it sees).
+  ScatterOrigin prev;
+};
+
+}  // namespace
+
+/// Defaults that differ between the names this integrator is known by.
+struct TransientPathDefaults {
+  int maxDepth = -1;
+};
+
+class TransientPathIntegrator : public TransientIntegrator {
+ public:
+  explicit TransientPathIntegrator(const Properties& props, const TransientPathDefaults& defaults = {})
+      : maxDepth_(int(props.getInt("max_depth", defaults.maxDepth))),
+        rrDepth_(int(props.getInt("rr_depth", 5))),
+        hideEmitters_(props.getBool("hide_emitters", false)),
+        observerTime_(props.getBool("observer_time", true)) {
+    if (maxDepth_ < -1) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth_));
+    if (rrDepth_ <= 0) props.raise("rr_depth", str("must be at least 1, got ", rrDepth_));
+    // mitransient's spelling: camera_unwarp = true removes the camera segment.
+    if (props.has("camera_unwarp")) {
+      if (props.has("observer_time"))
+        props.raise("camera_unwarp", "give either observer_time or camera_unwarp (its opposite), not both");
+      observerTime_ = !props.getBool("camera_unwarp");
+    }
+    readTemporalFilter(props);
+    discardDirectLight_ = props.getBool("discard_direct_light", false);
+    props.getInt("version", 0);  // lajolla's volpath scenes select their homework variant with it
+    props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
+  }
+
+  void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
+    if (maxDepth_ == 0) return;
+    const double horizon = recorder.horizon();
+    PathState s;
+    s.ray = cameraRay;
+    s.medium = scene.sensor().medium();
+    s.segmentStart = s.prev.p = cameraRay.o;
+    for (int passThrough = 0; passThrough < kMaxPassThrough;) {
+      SurfaceInteraction si;
+      bool hit = scene.rayIntersect(s.ray, si);
+      MediumSample ms;
+      if (s.medium) {
+        ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
+        s.throughput *= ms.weight;
+        if (s.throughput.isBlack()) return;
+      }
+      if (ms.scattered) {
+        if (!advance(s, ms.p) || s.opl >= horizon) return;
+        if (!scatterInMedium(scene, s, ms.p, sampler, recorder)) return;
+        passThrough = 0;
+        continue;
+      }
+      if (!hit) {
+        if (!(hideEmitters_ && s.depth == 0) && !discardDirectLight_) recordEnvironment(scene, s, recorder);
+        return;
+      }
+      if (!advance(s, si.p) || s.opl >= horizon) return;
+      recordEmission(scene, s, si, recorder);
+      if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
+        s.medium = mediumAfter(si, s.ray.d, s.medium);
+        s.ray = si.spawnRay(s.ray.d);
+        ++passThrough;
+        continue;
+      }
+      if (!scatterOnSurface(scene, s, si, sampler, recorder)) return;
+      passThrough = 0;
+    }
+  }
+
+  std::string toString() const override {
+    return str("TransientPathIntegrator[max_depth=", maxDepth_, ", rr_depth=", rrDepth_,
+               ", hide_emitters=", hideEmitters_ ? "true" : "false", ", observer_time=",
+               observerTime_ ? "true" : "false", "]");
+  }
+
+ private:
+  /// Move the path to vertex `p` along the current ray, adding the segment's
+  /// OPL (unless it is the camera segment and observer time is off).
+  bool advance(PathState& s, const Point3f& p) const {
+    float eta = s.medium ? s.medium->eta() : s.surfaceEta;
+    if (observerTime_ || !s.cameraSegment) s.opl += double(eta) * distance(s.segmentStart, p);
+    s.segmentStart = p;
+    return std::isfinite(s.opl);
+  }
+
+  /// A real scattering vertex was reached: count the segment toward
+  /// max_depth; false when the path may not scatter again.
+  bool enterScatteringVertex(PathState& s) const {
+    s.cameraSegment = false;
+    return ++s.depth != maxDepth_;
+  }
+
+  /// Emission of the surface the path reached, MIS-weighted against emitter
+  /// sampling at the previous scattering vertex (shared with `path`).
+  void recordEmission(const Scene& scene, const PathState& s, const SurfaceInteraction& si,
+                      RadianceRecorder& recorder) const {
+    if (!si.emitter() || (hideEmitters_ && s.depth == 0) || discardDirectLight_) return;
+    Color3f Le = emissionFound(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev);
+    if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
+  }
+
+  void recordEnvironment(const Scene& scene, const PathState& s, RadianceRecorder& recorder) const {
+    for (const Emitter* emitter : scene.environmentEmitters()) {
+      Color3f Le = environmentFound(scene, s.ray, s.prev, emitter);
+      if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, emitter->pulse());
+    }
+  }
+
+  /// Next-event estimation from vertex `ref` (a surface, or a medium point
+  /// with zero normal): samples an emitter, connects to it through media and
+  /// records f * Le * T / pdf, MIS-weighted, at the OPL of the whole path.
+  /// `f` gives (value, density of the vertex's own sampling) for a world direction.
+  template <typename ScatterFn>
+  void nextEvent(const Scene& scene, const PathState& s, const SurfaceInteraction& ref, Sampler& sampler,
+                 RadianceRecorder& recorder, ScatterFn&& scatter) const {
+    DirectionSample ds;
+    Color3f emitterWeight = scene.sampleEmitterDirection(ref, sampler.next2D(), ds, false);
+    if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
+    // The OPL of the light segment is at least its length (eta >= 1): skip what the film cannot show.
+    if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
+    float pdf = 0.0f;
+    Color3f f = scatter(ds.d, pdf);
+    if (f.isBlack()) return;
+    Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
+    if (c.transmittance.isBlack()) return;
+    float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
+    recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
+                       ds.emitter->pulse());
+  }
+
+  bool scatterInMedium(const Scene& scene, PathState& s, const Point3f& p, Sampler& sampler,
+                       RadianceRecorder& recorder) const {
+    if (!enterScatteringVertex(s)) return false;
+    const PhaseFunction& phase = s.medium->phase();
+    if (phase.hasDelay()) {
+      s.opl += phase.sampleDelay(sampler.next1D());
+      if (s.opl >= recorder.horizon()) return false;
+    }
+    Vec3f wi = -s.ray.d;
+    SurfaceInteraction ref;  // a medium vertex: zero normal, so rays leave it without offset
+    ref.p = p;
+    ref.n = Normal3f(0.0f);
+    nextEvent(scene, s, ref, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
+      pdf = phase.pdf(wi, wo);
+      return Color3f(phase.eval(wi, wo));
+    });
+    Vec3f wo;
+    float pdf = 0.0f;
+    float weight = phase.sample(wi, sampler.next2D(), wo, pdf);
+    if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
+    s.throughput *= weight;
+    s.prev.p = p;
+    s.prev.bsdfPdf = pdf;
+    s.prev.delta = false;
+    s.ray = Ray(p, wo);
+    return russianRoulette(s, sampler);
+  }
+
+  bool scatterOnSurface(const Scene& scene, PathState& s, const SurfaceInteraction& si, Sampler& sampler,
+                        RadianceRecorder& recorder) const {
+    if (!enterScatteringVertex(s)) return false;
+    const BSDF& bsdf = *si.bsdf();
+    if (bsdf.hasDelay()) {  // time spent scattering here delays everything that leaves this vertex
+      s.opl += bsdf.sampleDelay(sampler.next1D());
+      if (s.opl >= recorder.horizon()) return false;
+    }
+    if (bsdf.hasSmooth()) {
+      nextEvent(scene, s, si, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
+        Vec3f local = si.toLocal(wo);
+        pdf = bsdf.pdf(si, local);
+        return bsdf.eval(si, local);
+      });
+    }
+    BSDFSample bs;
+    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
+    if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
+    Vec3f wo = si.toWorld(bs.wo);
+    s.throughput *= weight;
+    s.etaScale *= bs.eta * bs.eta;
+    s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
+    s.medium = mediumAfter(si, wo, s.medium);
+    s.prev.p = si.p;
+    s.prev.bsdfPdf = bs.pdf;
+    s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
+    s.ray = si.spawnRay(wo);
+    return russianRoulette(s, sampler);
+  }
+
+  /// Russian roulette on the throughput with the radiance scaling of
+  /// refraction removed, so paths inside glass are not killed unfairly.
+  bool russianRoulette(PathState& s, Sampler& sampler) const {
+    if (s.depth < rrDepth_) return true;
+    float q = std::min(s.throughput.maxValue() * s.etaScale, 0.95f);
+    if (!(sampler.next1D() < q)) return false;
+    s.throughput = s.throughput / q;
+    return true;
+  }
+
+  int maxDepth_;
+  int rrDepth_;
+  bool hideEmitters_;
+  bool observerTime_;
+  bool discardDirectLight_ = false;
+};
+
+}  // namespace femto
+
+#if defined(FEMTO_TRANSIENT_PATH_AS_PRBVOLPATH)
+namespace femto {
+// mitransient's integrators derive from Mitsuba 3's ADIntegrator, whose max_depth defaults to 6.
+class MitransientPrbVolpath final : public TransientPathIntegrator {
+ public:
+  explicit MitransientPrbVolpath(const Properties& props) : TransientPathIntegrator(props, {6}) {}
+};
+}  // namespace femto
+FEMTO_EXPORT_PLUGIN(femto::MitransientPrbVolpath, Integrator, "transient_prbvolpath",
+                    "mitransient's volumetric path tracer: transient_path with max_depth 6 by default")
+#elif defined(FEMTO_TRANSIENT_PATH_AS_TRANSIENTPATH)
+FEMTO_EXPORT_PLUGIN(femto::TransientPathIntegrator, Integrator, "transientpath",
+                    "Mitsuba 2's transient path tracer: transient_path under its old name")
+#else
+FEMTO_EXPORT_PLUGIN(femto::TransientPathIntegrator, Integrator, "transient_path",
+                    "Transient volumetric path tracer (contributions binned by optical path length)")
+#endif
