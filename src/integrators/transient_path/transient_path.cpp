@@ -9,7 +9,14 @@
 // scattering vertex (medium or non-delta surface) one emitter sample is
 // connected through media with their transmittance (ratio tracking in
 // heterogeneous media) and combined with phase/BSDF sampling by multiple
-// importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Paths end by
+// importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Lights at a
+// point (point, spot, projector) seen from a homogeneous medium get a second
+// medium vertex per segment: its distance is sampled equiangularly toward the
+// light (transport/equiangular.h: density ~ 1/r^2) over the part of the segment
+// from which the light can still be reached within the film's horizon, and
+// MIS-weighted against the free-flight vertex's next-event estimate. Without
+// it, next-event estimates from free-flight vertices near a point light have
+// infinite variance (fireflies ~ 1/r^2). Paths end by
 // Russian roulette on the throughput, at max_depth, or once their OPL passes
 // the film's horizon.
 //
@@ -55,7 +62,9 @@
 
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/emitter.h>
 #include <femto/transport/direct_lighting.h>
+#include <femto/transport/equiangular.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
@@ -82,6 +91,13 @@ struct PathState {
   // The last scattering vertex, for weighting emission that phase/BSDF sampling
   // finds (a camera ray counts as delta: no other strategy finds what it sees).
   ScatterOrigin prev;
+  // The homogeneous-medium segment `ray` is crossing, when next-event
+  // estimation samples distances along it toward point lights: its length
+  // (hit distance or Infinity) and the OPL left before the horizon (Infinity
+  // when the segment adds no OPL: camera segment without observer time).
+  bool equiangular = false;
+  float segmentMax = 0.0f;
+  double segmentBudget = 0.0;
 };
 
 }  // namespace
@@ -124,13 +140,15 @@ class TransientPathIntegrator : public TransientIntegrator {
       bool hit = scene.rayIntersect(s.ray, si);
       MediumSample ms;
       if (s.medium) {
+        beginMediumSegment(s, hit ? si.t : Infinity, horizon);
+        if (s.equiangular) nextEventEquiangular(scene, s, sampler, recorder);
         ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
       }
       if (ms.scattered) {
         if (!advance(s, ms.p) || s.opl >= horizon) return;
-        if (!scatterInMedium(scene, s, ms.p, sampler, recorder)) return;
+        if (!scatterInMedium(scene, s, ms.p, ms.t, sampler, recorder)) return;
         passThrough = 0;
         continue;
       }
@@ -140,6 +158,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       }
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
+      s.equiangular = false;
       if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
         s.medium = mediumAfter(si, s.ray.d, s.medium);
         s.ray = si.spawnRay(s.ray.d);
@@ -194,9 +213,12 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// with zero normal): samples an emitter, connects to it through media and
   /// records f * Le * T / pdf, MIS-weighted, at the OPL of the whole path.
   /// `f` gives (value, density of the vertex's own sampling) for a world direction.
+  /// `segmentT` >= 0: `ref` is a free-flight vertex at that distance along
+  /// s.ray, whose estimate toward a point light is MIS-weighted against
+  /// equiangular sampling of the same segment (nextEventEquiangular).
   template <typename ScatterFn>
   void nextEvent(const Scene& scene, const PathState& s, const SurfaceInteraction& ref, Sampler& sampler,
-                 RadianceRecorder& recorder, ScatterFn&& scatter) const {
+                 RadianceRecorder& recorder, ScatterFn&& scatter, float segmentT = -1.0f) const {
     DirectionSample ds;
     Color3f emitterWeight = scene.sampleEmitterDirection(ref, sampler.next2D(), ds, false);
     if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
@@ -208,11 +230,74 @@ class TransientPathIntegrator : public TransientIntegrator {
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
     float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
+    Point3f lightPosition;
+    if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition))
+      weight = powerHeuristic(1.0f, s.medium->freeFlightPdf(segmentT), 1.0f,
+                              pdfEquiangular(equiangularToward(s, lightPosition), segmentT));
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
                        ds.emitter->pulse());
   }
 
-  bool scatterInMedium(const Scene& scene, PathState& s, const Point3f& p, Sampler& sampler,
+  /// Start crossing a medium segment of length `tMax` along s.ray: decide
+  /// whether next-event estimation also samples it equiangularly (homogeneous
+  /// medium, and a vertex on it may still connect to a light: depth).
+  void beginMediumSegment(PathState& s, float tMax, double horizon) const {
+    s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != maxDepth_;
+    s.segmentMax = tMax;
+    s.segmentBudget = (observerTime_ || !s.cameraSegment) ? horizon - s.opl : double(Infinity);
+  }
+
+  /// The part of the current segment equiangular sampling covers for a light
+  /// at `c`: up to the hit, and (transport/equiangular.h, reachableDistance) no
+  /// further than a path can go and still reach `c` before the horizon, since
+  /// beyond it no vertex contributes. The same for sampling and for the MIS
+  /// weight of free-flight vertices, so the two strategies' weights sum to one.
+  EquiangularSegment equiangularToward(const PathState& s, const Point3f& c) const {
+    float tEnd = s.segmentMax;
+    if (std::isfinite(s.segmentBudget))
+      tEnd = std::min(tEnd, reachableDistance(s.ray.o, s.ray.d, s.medium->eta(), s.segmentBudget, c));
+    return equiangularSegment(s.ray.o, s.ray.d, tEnd, c);
+  }
+
+  /// Next-event estimation from a medium vertex whose distance along the
+  /// current segment is sampled equiangularly toward a light at a point
+  /// (Kulla and Fajardo 2012): records
+  /// throughput * sigma_s T(t) / pdf(t) * phase * Le * T_light, MIS-weighted
+  /// against the free-flight vertex's estimate (scatterInMedium), at the OPL
+  /// of the whole path. Emitters not at a point are left to free flights.
+  void nextEventEquiangular(const Scene& scene, const PathState& s, Sampler& sampler,
+                            RadianceRecorder& recorder) const {
+    float uPick = sampler.next1D(), uDistance = sampler.next1D();
+    const Emitter* emitter = scene.pickEmitter(uPick);
+    Point3f lightPosition;
+    if (!emitter || !emitter->deltaPosition(lightPosition)) return;
+    EquiangularSegment seg = equiangularToward(s, lightPosition);
+    if (!seg.valid()) return;
+    float pdf = 0.0f;
+    float t = sampleEquiangular(seg, uDistance, pdf);
+    if (!(pdf > 0.0f)) return;
+    SurfaceInteraction ref;  // a medium vertex: zero normal
+    ref.p = s.ray(t);
+    ref.n = Normal3f(0.0f);
+    Color3f vertex = s.medium->scatteringCoefficient(ref.p) * s.medium->transmittance(s.ray, t, sampler) / pdf;
+    if (vertex.isBlack()) return;
+    double opl = s.opl + ((observerTime_ || !s.cameraSegment) ? double(s.medium->eta()) * distance(s.segmentStart, ref.p) : 0.0);
+    const PhaseFunction& phase = s.medium->phase();
+    if (phase.hasDelay()) opl += phase.sampleDelay(sampler.next1D());
+    DirectionSample ds;
+    Color3f Le = emitter->sampleDirection(ref.p, Point2f(uPick, 0.5f), ds);
+    if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
+    Le = Le / scene.emitterPickProbability(emitter);
+    Color3f f(phase.eval(-s.ray.d, ds.d));
+    if (f.isBlack()) return;
+    Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
+    if (c.transmittance.isBlack()) return;
+    float weight = powerHeuristic(1.0f, pdf, 1.0f, s.medium->freeFlightPdf(t));
+    recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
+                       emitter->pulse());
+  }
+
+  bool scatterInMedium(const Scene& scene, PathState& s, const Point3f& p, float t, Sampler& sampler,
                        RadianceRecorder& recorder) const {
     if (!enterScatteringVertex(s)) return false;
     const PhaseFunction& phase = s.medium->phase();
@@ -227,7 +312,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     nextEvent(scene, s, ref, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
       pdf = phase.pdf(wi, wo);
       return Color3f(phase.eval(wi, wo));
-    });
+    }, t);
     Vec3f wo;
     float pdf = 0.0f;
     float weight = phase.sample(wi, sampler.next2D(), wo, pdf);

@@ -25,6 +25,10 @@ class PointLight final : public Emitter {
   }
 
   bool isDelta() const override { return true; }
+  bool deltaPosition(Point3f& position) const override {
+    position = position_;
+    return true;
+  }
 
   Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
     float dist2 = sampleDeltaPosition(position_, ref, ds);

@@ -44,9 +44,7 @@ class HomogeneousMedium final : public Medium {
     float t = sigma > 0.0f ? -std::log1p(-uDistance) / sigma : Infinity;
     if (t < tMax) {
       Color3f tr = transmittance(t);
-      float pdf = 0.0f;
-      for (int c = 0; c < 3; ++c) pdf += sigmaT_[c] * tr[c];
-      pdf /= 3.0f;
+      float pdf = freeFlightPdf(t);
       ms.scattered = true;
       ms.t = t;
       ms.p = ray(t);
@@ -60,6 +58,12 @@ class HomogeneousMedium final : public Medium {
   }
 
   Color3f transmittance(const Ray&, float tMax, Sampler&) const override { return transmittance(tMax); }
+  float freeFlightPdf(float t) const override {
+    Color3f tr = transmittance(t);
+    float pdf = 0.0f;
+    for (int c = 0; c < 3; ++c) pdf += sigmaT_[c] * tr[c];
+    return pdf / 3.0f;
+  }
   Color3f majorant() const override { return sigmaT_; }
   Color3f scatteringCoefficient(const Point3f&) const override { return sigmaS_; }
   bool isHomogeneous() const override { return true; }

@@ -15,6 +15,10 @@ class OrientedPointEmitter : public Emitter {
       : Emitter(props), toWorld_(props.getTransform("to_world", Transform())), position_(toWorld_.point(Point3f(0.0f))) {}
 
   bool isDelta() const override { return true; }
+  bool deltaPosition(Point3f& position) const override {
+    position = position_;
+    return true;
+  }
 
   Color3f sampleDirection(const Point3f& ref, const Point2f&, DirectionSample& ds) const override {
     float dist2 = sampleDeltaPosition(position_, ref, ds);

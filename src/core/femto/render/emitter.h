@@ -69,6 +69,9 @@ class Emitter : public Object {
   virtual Color3f power() const;
 
   virtual bool isDelta() const = 0;
+  /// Lights at a single point (point, spot, projector): that point. Volumetric
+  /// integrators sample distances along rays toward it (transport/equiangular.h).
+  virtual bool deltaPosition(Point3f& /*position*/) const { return false; }
   virtual bool isEnvironment() const { return false; }
   /// Area emitters only: the shape they sit on.
   virtual void setShape(const Shape* shape);

@@ -50,6 +50,10 @@ Color3f Medium::scatteringCoefficient(const Point3f&) const {
                               "transient_beams)"));
 }
 
+float Medium::freeFlightPdf(float) const {
+  throw Error(str(toString(), " has no closed-form free-flight density (only homogeneous media do)"));
+}
+
 std::string Medium::mediumString() const { return str("eta=", eta_, ", phase=", phase_->toString()); }
 
 }  // namespace femto

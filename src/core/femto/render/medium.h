@@ -75,6 +75,11 @@ class Medium : public Object {
   virtual Color3f scatteringCoefficient(const Point3f& p) const;
   /// Constant coefficients (transmittance needs no random numbers).
   virtual bool isHomogeneous() const { return false; }
+  /// Density with which sampleDistance reports a scattering event at
+  /// distance t (< tMax) along a ray, for MIS against other distance sampling
+  /// (transport/equiangular.h). Homogeneous media only (isHomogeneous()); the
+  /// default, for tracking in heterogeneous media that has no closed form, throws.
+  virtual float freeFlightPdf(float t) const;
 
   const PhaseFunction& phase() const { return *phase_; }
   /// Refractive index: light crossing distance d adds eta * d to its OPL.

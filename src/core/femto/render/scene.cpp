@@ -80,21 +80,28 @@ float Scene::emitterPickProbability(const Emitter* emitter) const {
   return emitterWeightSum_ > 0.0f ? emitter->samplingWeight() / emitterWeightSum_ : 0.0f;
 }
 
-Color3f Scene::sampleEmitterDirection(const SurfaceInteraction& ref, const Point2f& u, DirectionSample& ds,
-                                      bool testVisibility) const {
-  ds = DirectionSample();
-  if (emitterWeightSum_ <= 0.0f) return Color3f(0.0f);
-  // Choose an emitter with u.x, then rescale the part of u.x inside its
+const Emitter* Scene::pickEmitter(float& u) const {
+  if (emitterWeightSum_ <= 0.0f) return nullptr;
+  // Choose an emitter with u, then rescale the part of u inside its
   // interval back to [0, 1) so it can be reused for the emitter's own sampling.
-  float target = u.x * emitterWeightSum_;
+  float target = u * emitterWeightSum_;
   size_t i = size_t(std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), target) - emitterCdf_.begin());
   i = std::min(i, emitterCdf_.size() - 1);
   while (i > 0 && emitterCdf_[i] == emitterCdf_[i - 1]) --i;  // never pick a zero-weight emitter
   float start = i == 0 ? 0.0f : emitterCdf_[i - 1];
   float width = emitterCdf_[i] - start;
-  Point2f uReused(std::clamp((target - start) / width, 0.0f, 0.99999994f), u.y);
+  u = std::clamp((target - start) / width, 0.0f, 0.99999994f);
+  return emitters_[i].get();
+}
 
-  const Emitter& emitter = *emitters_[i];
+Color3f Scene::sampleEmitterDirection(const SurfaceInteraction& ref, const Point2f& u, DirectionSample& ds,
+                                      bool testVisibility) const {
+  ds = DirectionSample();
+  float uPick = u.x;
+  const Emitter* picked = pickEmitter(uPick);
+  if (!picked) return Color3f(0.0f);
+  Point2f uReused(uPick, u.y);
+  const Emitter& emitter = *picked;
   Color3f value = emitter.sampleDirection(ref.p, uReused, ds);
   if (ds.pdf <= 0.0f || value.isBlack()) return Color3f(0.0f);
   ds.emitter = &emitter;

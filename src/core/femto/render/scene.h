@@ -39,6 +39,10 @@ class Scene : public Object {
   /// Density (pick probability times solid angle) of sampleEmitterDirection
   /// choosing point ds.p of `emitter` from `ref`.
   float pdfEmitterDirection(const Point3f& ref, const DirectionSample& ds, const Emitter* emitter) const;
+  /// The emitter sampleEmitterDirection picks with u.x = `u` (nullptr when no
+  /// emitter has weight); `u` becomes the part of it inside the emitter's
+  /// interval, rescaled to [0, 1) for reuse.
+  const Emitter* pickEmitter(float& u) const;
   /// Probability that sampleEmitterDirection picks `emitter`.
   float emitterPickProbability(const Emitter* emitter) const;
 

@@ -1,0 +1,48 @@
+#include <femto/transport/equiangular.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/math/constants.h>
+
+namespace femto {
+
+EquiangularSegment equiangularSegment(const Point3f& o, const Vec3f& d, float tEnd, const Point3f& c) {
+  EquiangularSegment seg;
+  Vec3f oc = c - o;
+  seg.delta = double(dot(oc, d));
+  double r2 = double(dot(oc, oc));
+  seg.height = std::sqrt(std::max(0.0, r2 - seg.delta * seg.delta));
+  seg.tEnd = tEnd;
+  // A light on the ray's line (height ~ 0 relative to its distance) has no usable angle.
+  if (!(seg.height > 1e-7 * std::sqrt(r2)) || !(tEnd > 0.0f)) return EquiangularSegment();
+  seg.thetaA = std::atan2(-seg.delta, seg.height);
+  seg.thetaB = std::isfinite(tEnd) ? std::atan2(double(tEnd) - seg.delta, seg.height) : std::atan2(1.0, 0.0);  // pi / 2 in double
+  return seg;
+}
+
+float sampleEquiangular(const EquiangularSegment& seg, float u, float& pdf) {
+  double theta = seg.thetaA + double(u) * (seg.thetaB - seg.thetaA);
+  double t = seg.delta + seg.height * std::tan(theta);
+  t = std::clamp(t, 0.0, double(seg.tEnd));
+  pdf = pdfEquiangular(seg, float(t));
+  return float(t);
+}
+
+float pdfEquiangular(const EquiangularSegment& seg, float t) {
+  if (!seg.valid() || !(t >= 0.0f) || !(t <= seg.tEnd)) return 0.0f;
+  double x = double(t) - seg.delta;
+  return float(seg.height / ((seg.thetaB - seg.thetaA) * (seg.height * seg.height + x * x)));
+}
+
+float reachableDistance(const Point3f& o, const Vec3f& d, float eta, double budget, const Point3f& c) {
+  Vec3f oc = c - o;
+  double r0 = std::sqrt(double(dot(oc, oc))), delta = double(dot(oc, d));
+  if (!(budget > r0)) return 0.0f;
+  if (!std::isfinite(budget)) return Infinity;
+  // (budget - eta t)^2 = r0^2 - 2 delta t + t^2: the smaller root, in a form stable for eta = 1.
+  double a = double(eta) * eta - 1.0, b = budget * eta - delta, cc = budget * budget - r0 * r0;
+  return float(cc / (b + std::sqrt(std::max(0.0, b * b - a * cc))));
+}
+
+}  // namespace femto
