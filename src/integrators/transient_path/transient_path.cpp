@@ -12,8 +12,7 @@
 // importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Lights at a
 // point (point, spot, projector) seen from a homogeneous medium get a second
 // medium vertex per segment: its distance is sampled equiangularly toward the
-// light (transport/equiangular.h: density ~ 1/r^2) over the part of the segment
-// from which the light can still be reached within the film's horizon, and
+// light (transport/equiangular.h: density ~ 1/r^2) over the whole segment, and
 // MIS-weighted against the free-flight vertex's next-event estimate. Without
 // it, next-event estimates from free-flight vertices near a point light have
 // infinite variance (fireflies ~ 1/r^2). Paths end by
@@ -93,11 +92,9 @@ struct PathState {
   ScatterOrigin prev;
   // The homogeneous-medium segment `ray` is crossing, when next-event
   // estimation samples distances along it toward point lights: its length
-  // (hit distance or Infinity) and the OPL left before the horizon (Infinity
-  // when the segment adds no OPL: camera segment without observer time).
+  // (hit distance or Infinity).
   bool equiangular = false;
   float segmentMax = 0.0f;
-  double segmentBudget = 0.0;
 };
 
 }  // namespace
@@ -140,7 +137,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       bool hit = scene.rayIntersect(s.ray, si);
       MediumSample ms;
       if (s.medium) {
-        beginMediumSegment(s, hit ? si.t : Infinity, horizon);
+        beginMediumSegment(s, hit ? si.t : Infinity);
         if (s.equiangular) nextEventEquiangular(scene, s, sampler, recorder);
         ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
@@ -241,22 +238,19 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// Start crossing a medium segment of length `tMax` along s.ray: decide
   /// whether next-event estimation also samples it equiangularly (homogeneous
   /// medium, and a vertex on it may still connect to a light: depth).
-  void beginMediumSegment(PathState& s, float tMax, double horizon) const {
+  void beginMediumSegment(PathState& s, float tMax) const {
     s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != maxDepth_;
     s.segmentMax = tMax;
-    s.segmentBudget = (observerTime_ || !s.cameraSegment) ? horizon - s.opl : double(Infinity);
   }
 
   /// The part of the current segment equiangular sampling covers for a light
-  /// at `c`: up to the hit, and (transport/equiangular.h, reachableDistance) no
-  /// further than a path can go and still reach `c` before the horizon, since
-  /// beyond it no vertex contributes. The same for sampling and for the MIS
+  /// at `c`: all of it, up to the hit. The same for sampling and for the MIS
   /// weight of free-flight vertices, so the two strategies' weights sum to one.
+  /// Not cut at the film's horizon: the samples would then depend on the
+  /// time window, and a render split into windows would no longer give the
+  /// bins of one render exactly (test_transient_time_window_split.cpp).
   EquiangularSegment equiangularToward(const PathState& s, const Point3f& c) const {
-    float tEnd = s.segmentMax;
-    if (std::isfinite(s.segmentBudget))
-      tEnd = std::min(tEnd, reachableDistance(s.ray.o, s.ray.d, s.medium->eta(), s.segmentBudget, c));
-    return equiangularSegment(s.ray.o, s.ray.d, tEnd, c);
+    return equiangularSegment(s.ray.o, s.ray.d, s.segmentMax, c);
   }
 
   /// Next-event estimation from a medium vertex whose distance along the

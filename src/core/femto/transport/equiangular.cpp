@@ -35,14 +35,4 @@ float pdfEquiangular(const EquiangularSegment& seg, float t) {
   return float(seg.height / ((seg.thetaB - seg.thetaA) * (seg.height * seg.height + x * x)));
 }
 
-float reachableDistance(const Point3f& o, const Vec3f& d, float eta, double budget, const Point3f& c) {
-  Vec3f oc = c - o;
-  double r0 = std::sqrt(double(dot(oc, oc))), delta = double(dot(oc, d));
-  if (!(budget > r0)) return 0.0f;
-  if (!std::isfinite(budget)) return Infinity;
-  // (budget - eta t)^2 = r0^2 - 2 delta t + t^2: the smaller root, in a form stable for eta = 1.
-  double a = double(eta) * eta - 1.0, b = budget * eta - delta, cc = budget * budget - r0 * r0;
-  return float(cc / (b + std::sqrt(std::max(0.0, b * b - a * cc))));
-}
-
 }  // namespace femto

@@ -30,11 +30,4 @@ float sampleEquiangular(const EquiangularSegment& seg, float u, float& pdf);
 /// Density of sampleEquiangular at t (0 outside [0, tEnd] or for an invalid segment).
 float pdfEquiangular(const EquiangularSegment& seg, float t);
 
-/// How far along o + t d (t >= 0) a path can go and still reach `c` with a
-/// total optical path length below `budget`: the t where eta t + |x(t) - c|
-/// (the least OPL of ray piece plus light segment, every refractive index
-/// being at least 1) reaches `budget`; 0 when even t = 0 exceeds it. The
-/// OPL is non-decreasing in t for eta >= 1, so [0, result) is the whole useful range.
-float reachableDistance(const Point3f& o, const Vec3f& d, float eta, double budget, const Point3f& c);
-
 }  // namespace femto
