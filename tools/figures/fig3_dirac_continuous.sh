@@ -7,7 +7,7 @@
 # at OPL 0 (-D pulse=delta), then continuous emission switched on at OPL 0
 # (-D pulse=continuous: each frame is the running integral of the Dirac
 # sequence averaged over the bin, exact; tested in
-# tests/unit/test_seed_scenes.cpp). A continuous row's steady column is its
+# tests/unit/scenes/test_seed_scenes.cpp). A continuous row's steady column is its
 # last frame.
 # Usage: tools/figures/fig3_dirac_continuous.sh [extra femto options for every render]
 # Environment: FEMTO (build/bin/femto), OUT (out/fig3), SPP (transient_path's

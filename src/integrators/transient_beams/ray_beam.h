@@ -41,7 +41,7 @@
 //    quantities invariant under the lateral offset, so the mix stays unbiased.
 //
 // Hard cases (each has a unit test against a numerically integrated
-// reference, tests/unit/test_ray_beam.cpp): near-parallel and anti-parallel
+// reference, tests/unit/integrators/transient_beams/test_ray_beam.cpp): near-parallel and anti-parallel
 // pairs, grazing (tangent) passes, beams starting or ending inside the
 // kernel, camera segments ending inside it, zero-length overlaps, degenerate
 // and non-finite input. On true, every field of the hit is finite.

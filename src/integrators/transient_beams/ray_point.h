@@ -31,7 +31,7 @@
 // to x_i (< r) is not counted, as the beam estimate does not count it: the
 // time blur this leaves is below r eta and vanishes as the radius shrinks.
 //
-// Hard cases (tests/unit/test_ray_point.cpp): a photon exactly on the ray
+// Hard cases (tests/unit/integrators/transient_beams/test_ray_point.cpp): a photon exactly on the ray
 // (distance 0), at either end of the segment (t_i = 0 or tMax, kept: the
 // kernel region is the closed cylinder; its ends have measure zero), an
 // unbounded segment (tMax = +inf), degenerate or non-finite input (false).

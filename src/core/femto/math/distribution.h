@@ -3,7 +3,7 @@
 // (environment maps, emission over mesh triangles, photon emission).
 // Construction follows Pharr, Jakob and Humphreys, "Physically Based
 // Rendering" (3rd ed.), sec. 13.6.7 (1D) and 13.6.7.1 (2D, marginal rows times
-// conditional columns). tests/unit/test_distribution.cpp checks each sampler
+// conditional columns). tests/unit/math/test_distribution.cpp checks each sampler
 // against its pdf with a chi-square test.
 #include <cstddef>
 #include <vector>

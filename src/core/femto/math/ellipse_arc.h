@@ -10,7 +10,7 @@
 // tabulated on kIntervals equal angle intervals, each integrated by 4-point
 // Gauss-Legendre quadrature (the speed is smooth and periodic). Against the
 // exact AGM perimeter the relative error is ~1e-16 for axis ratios up to 4,
-// below 1e-9 up to 50 and 1e-7 up to 1000 (tests/unit/test_cylinder_affine.cpp).
+// below 1e-9 up to 50 and 1e-7 up to 1000 (tests/unit/plugins/shapes/test_cylinder_affine.cpp).
 // Inversion finishes with safeguarded Newton steps on the same quadrature, so
 // samples follow the speed, not a piecewise-constant stand-in for it.
 #include <vector>

@@ -1,6 +1,6 @@
 // Warps from the unit square (see warp.h). Every density is with respect to
 // the measure of the target domain (area for the disk, solid angle for
-// directions); tests/unit/test_warp.cpp checks each pair with a chi-square test.
+// directions); tests/unit/math/test_warp.cpp checks each pair with a chi-square test.
 #include <femto/math/warp.h>
 
 #include <femto/math/constants.h>

@@ -9,7 +9,7 @@
 #include <femto/core/plugin.h>
 #include <femto/core/spelling.h>
 
-#include "../plugins/test_object.h"
+#include "../../plugins/test_object.h"
 #include "plugin_util.h"
 
 namespace femto {
