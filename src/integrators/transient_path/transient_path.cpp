@@ -46,7 +46,7 @@
 // | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
 // | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
 // | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
-// | gaussian_stddev | float   | 2       | mitransient: its standard deviation (at least 0.5) | bins |
+// | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins |
 // | discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray) finds; next-event estimates stay | - |
 // | version         | integer | -       | lajolla's volpath variant selector: accepted, ignored | - |
 // | block_size      | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |

@@ -23,7 +23,7 @@ void TransientIntegrator::readTemporalFilter(const Properties& props) {
     requestedTimeFilter_ = TimeFilter::box();
   } else if (type == "gaussian") {
     if (!(stddev > 0.0f) || !std::isfinite(stddev)) props.raise("gaussian_stddev", str("must be positive (bins), got ", stddev));
-    requestedTimeFilter_ = TimeFilter::gaussian(std::max(stddev, 0.5f));
+    requestedTimeFilter_ = TimeFilter::gaussian(stddev);
   } else {
     props.raise("temporal_filter", str("expected \"box\", \"gaussian\" or \"\" (the film's own), got \"", type, "\""));
   }

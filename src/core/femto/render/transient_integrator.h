@@ -63,7 +63,7 @@ class TransientIntegrator : public Integrator {
  protected:
   /// mitransient's temporal filter on the integrator: temporal_filter = ""
   /// (the film's own), "box" or "gaussian" with gaussian_stddev (bins,
-  /// default 2; at least 0.5, as mitransient clamps it).
+  /// default 2).
   void readTemporalFilter(const Properties& props);
 
  private:
