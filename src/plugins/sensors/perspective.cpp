@@ -17,117 +17,32 @@
 // | principal_point_offset_y | float | 0 | shift of the image plane, in film heights (Mitsuba 3)   |
 // | srf         | spectrum  | —        | Mitsuba 3's sensor response: refused (femto renders RGB)     |
 //
-// Principal point offsets follow Mitsuba 3's perspective.cpp (sample_ray):
-// the offset is added to the film position in film-size units, so pixel
-// (sx, sy) sees what the centred camera sees at (sx + offset_x, sy + offset_y)
-// ("the position of the camera's principal point relative to the center of
-// the film", Mitsuba 3 docs, sensor-perspective). A positive offset_x therefore
-// turns the view to the image right, a positive offset_y down; the centre of
-// projection stays at the camera origin (an off-axis frustum, not a rotation).
-// fov_axis is case-insensitive, as in Mitsuba.
-#include <algorithm>
-#include <cctype>
-#include <cmath>
-#include <string>
-
+// The parameters and the projection are ProjectiveCamera's
+// (render/projective_camera.h), shared with thinlens; fov_axis is
+// case-insensitive, as in Mitsuba.
 #include <femto/core/plugin.h>
-#include <femto/render/sensor.h>
+#include <femto/render/projective_camera.h>
 
 namespace femto {
 
-class PerspectiveCamera final : public Sensor {
+class PerspectiveCamera final : public ProjectiveCamera {
  public:
-  explicit PerspectiveCamera(const Properties& props) : Sensor(props) {
-    nearClip_ = props.getFloat("near_clip", 0.01f);
-    farClip_ = props.getFloat("far_clip", 10000.0f);
-    if (!(nearClip_ > 0.0f)) props.raise("near_clip", str("must be positive, got ", nearClip_));
-    if (!(farClip_ > nearClip_)) props.raise("far_clip", str("must be larger than near_clip (", nearClip_, ")"));
-    // Mitsuba's projective cameras all take a focus distance; only thinlens uses it.
-    if (!(props.getFloat("focus_distance", farClip_) > 0.0f)) props.raise("focus_distance", "must be positive");
-    offset_ = Point2f(props.getFloat("principal_point_offset_x", 0.0f), props.getFloat("principal_point_offset_y", 0.0f));
-    if (!std::isfinite(offset_.x)) props.raise("principal_point_offset_x", "must be finite");
-    if (!std::isfinite(offset_.y)) props.raise("principal_point_offset_y", "must be finite");
-    if (props.has("srf"))
-      props.raise("srf", "spectral sensor response functions are not supported (femto renders RGB)");
-
-    const Point2i size = film_->size();
-    const float width = float(size.x), height = float(size.y);
-    float tanHalf;
-    std::string axis;
-    if (props.has("fov")) {
-      if (props.has("focal_length")) props.raise("focal_length", "give either \"fov\" or \"focal_length\", not both");
-      fov_ = props.getFloat("fov");
-      if (!(fov_ > 0.0f && fov_ < 180.0f)) props.raise("fov", str("must be in (0, 180) degrees, got ", fov_));
-      tanHalf = std::tan(degToRad(fov_) * 0.5f);
-      axis = lowercase(props.getString("fov_axis", "x"));
-    } else {
-      // 35 mm film is 36 x 24 mm: the focal length fixes the diagonal field of view.
-      float focal = parseMillimetres(props, "focal_length", props.getString("focal_length", "50mm"));
-      tanHalf = std::sqrt(36.0f * 36.0f + 24.0f * 24.0f) / (2.0f * focal);
-      fov_ = radToDeg(2.0f * std::atan(tanHalf));
-      axis = "diagonal";
-      if (props.has("fov_axis")) props.getString("fov_axis");  // meaningless with a focal length; accepted
-    }
-    // Half-extents of the image plane at z = 1 along x and y.
-    if (axis == "smaller") axis = width <= height ? "x" : "y";
-    if (axis == "larger") axis = width >= height ? "x" : "y";
-    if (axis == "x") {
-      tanX_ = tanHalf;
-      tanY_ = tanHalf * height / width;
-    } else if (axis == "y") {
-      tanY_ = tanHalf;
-      tanX_ = tanHalf * width / height;
-    } else if (axis == "diagonal") {
-      float diagonal = std::sqrt(width * width + height * height);
-      tanX_ = tanHalf * width / diagonal;
-      tanY_ = tanHalf * height / diagonal;
-    } else {
-      props.raise("fov_axis", str("unknown axis \"", axis, "\" (expected x, y, diagonal, smaller or larger)"));
-    }
-  }
+  // Mitsuba's projective cameras all take a focus distance; only thinlens uses it.
+  explicit PerspectiveCamera(const Properties& props) : ProjectiveCamera(props, -1.0f) {}
 
   Color3f sampleRay(const Point2f& filmPos, const Point2f&, Ray& ray) const override {
-    const Point2i size = film_->size();
-    // Film (0, 0) is top-left; camera +x is left and +y up. The principal
-    // point offset shifts the film position in film-size units (Mitsuba 3).
-    float sx = filmPos.x / float(size.x) + offset_.x, sy = filmPos.y / float(size.y) + offset_.y;
-    Vec3f dCamera((1.0f - 2.0f * sx) * tanX_, (1.0f - 2.0f * sy) * tanY_, 1.0f);
-    Vec3f dWorld = toWorld_.vector(dCamera);
+    Vec3f dWorld = toWorld_.vector(cameraDirection(filmPos));
     // The clip planes are z = near/far in camera space: distances along the
     // unit world ray are the clip values times the length of dWorld.
     float len = length(dWorld);
-    ray = Ray(toWorld_.point(Point3f(0.0f)), dWorld / len, nearClip_ * len, farClip_ * len);
+    ray = Ray(toWorld_.point(Point3f(0.0f)), dWorld / len, nearClip() * len, farClip() * len);
     return Color3f(1.0f);
   }
 
   std::string toString() const override {
-    return str("PerspectiveCamera[fov=", fov_, ", near_clip=", nearClip_, ", far_clip=", farClip_,
-               ", principal_point_offset=", offset_, "]");
+    return str("PerspectiveCamera[fov=", fov(), ", near_clip=", nearClip(), ", far_clip=", farClip(),
+               ", principal_point_offset=", principalPointOffset(), "]");
   }
-
- private:
-  static std::string lowercase(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
-  }
-
-  static float parseMillimetres(const Properties& props, const std::string& name, const std::string& text) {
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-      value = std::stof(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    std::string unit = text.substr(used);
-    if (used == 0 || (unit != "mm" && !unit.empty()) || !(value > 0.0f))
-      props.raise(name, str("expected a length such as \"50mm\", got \"", text, "\""));
-    return value;
-  }
-
-  float fov_ = 0.0f, tanX_ = 0.0f, tanY_ = 0.0f;
-  Point2f offset_;  // principal point offset, in film widths and heights
-  float nearClip_, farClip_;
 };
 
 }  // namespace femto
