@@ -26,6 +26,10 @@ void writeEXR(const std::filesystem::path& path, const Bitmap& image);
 void writeEXR(const std::filesystem::path& path, const Bitmap& image, const std::vector<std::string>& channelNames);
 /// Write an 8-bit sRGB PNG preview: linear value * 2^exposure, clamped, sRGB-encoded.
 void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure = 0.0f);
+/// Write display-encoded values in [0, 1] (already tone mapped and
+/// gamma-encoded; clamped) as 8 bits per channel, in the format the
+/// extension names (PNG, JPEG, ... as OpenImageIO writes them).
+void writeDisplayImage(const std::filesystem::path& path, const Bitmap& image);
 /// Read any image OpenImageIO can open (EXR, HDR, PNG, JPEG, ...), as float.
 /// 8-bit sRGB inputs are returned as stored values (no linearisation).
 Bitmap readImage(const std::filesystem::path& path);
