@@ -10,6 +10,7 @@
 // | name         | type    | default | meaning                 |
 // |--------------|---------|---------|-------------------------|
 // | sample_count | integer | 4       | samples per pixel (> 0) |
+// | seed         | integer | 0       | Mitsuba 3: the sampler's seed, combined with --seed (render/sampler.h) |
 #include <femto/core/plugin.h>
 #include <femto/math/pcg32.h>
 #include <femto/render/sampler.h>

@@ -13,13 +13,17 @@
 // |--------------|---------|---------|-----------------------------------------------------------------|
 // | sample_count | integer | 4       | samples per pixel, rounded up to a power of two (with a warning) |
 // | dimension    | integer | 4       | Mitsuba 0.x: dimensions with low-discrepancy samples; femto pads all |
+// | seed         | integer | 0       | Mitsuba 3: the sampler's seed, combined with --seed (render/sampler.h) |
+//
+// Mitsuba 0.6's `halton`, `hammersley` and `sobol` are this sampler under
+// their names (src/plugins/CMakeLists.txt builds them from this file).
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
 #include <femto/transport/sample_sequences.h>
 
 namespace femto {
 
-class LowDiscrepancySampler final : public DimensionalSampler {
+class LowDiscrepancySampler : public DimensionalSampler {
  public:
   explicit LowDiscrepancySampler(const Properties& props) : DimensionalSampler(props) {
     int64_t dimension = props.getInt("dimension", 4);
@@ -62,5 +66,22 @@ class LowDiscrepancySampler final : public DimensionalSampler {
 
 }  // namespace femto
 
+#if defined(FEMTO_LDSAMPLER_AS_QMC)
+// Mitsuba 0.6's halton, hammersley and sobol samplers: quasi-Monte Carlo
+// sequences, rendered with this scrambled (0,2)-sequence under their names
+// (a different low-discrepancy point set of the same kind). `scramble` is accepted.
+namespace femto {
+class QuasiMonteCarloSampler final : public LowDiscrepancySampler {
+ public:
+  explicit QuasiMonteCarloSampler(const Properties& props) : LowDiscrepancySampler(props) {
+    props.getInt("scramble", -1);
+  }
+  std::unique_ptr<Sampler> clone() const override { return std::make_unique<QuasiMonteCarloSampler>(*this); }
+};
+}  // namespace femto
+FEMTO_EXPORT_PLUGIN(femto::QuasiMonteCarloSampler, Sampler, FEMTO_SAMPLER_NAME,
+                    "Mitsuba 0.6 sampler name, rendered as a scrambled (0,2)-sequence")
+#else
 FEMTO_EXPORT_PLUGIN(femto::LowDiscrepancySampler, Sampler, "ldsampler",
                     "Owen-scrambled (0,2)-sequence, padded across dimensions")
+#endif

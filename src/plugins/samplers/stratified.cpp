@@ -11,6 +11,10 @@
 // | sample_count | integer | 4       | samples per pixel, rounded up to a square (with a warning) |
 // | jitter       | boolean | true    | random position inside each stratum (false: its centre)    |
 // | dimension    | integer | 4       | Mitsuba 0.x: dimensions stratified; femto stratifies all    |
+// | seed         | integer | 0       | Mitsuba 3: the sampler's seed, combined with --seed (render/sampler.h) |
+//
+// Mitsuba 3's `multijitter` and `orthogonal` are this sampler under their
+// names (src/plugins/CMakeLists.txt builds them from this file).
 #include <cmath>
 
 #include <femto/core/log.h>
@@ -19,7 +23,7 @@
 
 namespace femto {
 
-class StratifiedSampler final : public DimensionalSampler {
+class StratifiedSampler : public DimensionalSampler {
  public:
   explicit StratifiedSampler(const Properties& props) : DimensionalSampler(props) {
     jitter_ = props.getBool("jitter", true);
@@ -71,4 +75,22 @@ class StratifiedSampler final : public DimensionalSampler {
 
 }  // namespace femto
 
+#if defined(FEMTO_STRATIFIED_AS_MULTIJITTER)
+// Mitsuba 3's multi-jittered and orthogonal-array samplers: stratified
+// samples under their names (the same one-per-stratum property in every 2D
+// dimension; the extra cross-stratification of those designs is not
+// reproduced). orthogonal's `strength` is accepted.
+namespace femto {
+class MultiJitterSampler final : public StratifiedSampler {
+ public:
+  explicit MultiJitterSampler(const Properties& props) : StratifiedSampler(props) {
+    props.getInt("strength", 2);
+  }
+  std::unique_ptr<Sampler> clone() const override { return std::make_unique<MultiJitterSampler>(*this); }
+};
+}  // namespace femto
+FEMTO_EXPORT_PLUGIN(femto::MultiJitterSampler, Sampler, FEMTO_SAMPLER_NAME,
+                    "Mitsuba 3 sampler name, rendered as stratified samples")
+#else
 FEMTO_EXPORT_PLUGIN(femto::StratifiedSampler, Sampler, "stratified", "stratified (jittered) samples, one per stratum")
+#endif

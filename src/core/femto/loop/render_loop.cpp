@@ -103,7 +103,7 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
                                       }) &
             tbb::make_filter<Tile*, Tile*>(tbb::filter_mode::parallel,
                                            [&](Tile* tile) {
-                                             renderTile(*tile, prototype, film.size().x, options.seed, makeTile);
+                                             renderTile(*tile, prototype, film.size().x, prototype.cameraSeed(options.seed), makeTile);
                                              progress.update(uint64_t(tile->size.x) * uint64_t(tile->size.y));
                                              return tile;
                                            }) &

@@ -6,6 +6,11 @@ Sampler::Sampler(const Properties& props) {
   int64_t n = props.getInt("sample_count", 4);
   if (n <= 0 || n > int64_t(UINT32_MAX)) props.raise("sample_count", str("must be a positive integer, got ", n));
   sampleCount_ = uint32_t(n);
+  // Mitsuba 3's per-scene seed of the sampler (mi.render's seed argument
+  // plays the role of femto's --seed; the two are combined).
+  int64_t seed = props.getInt("seed", 0);
+  if (seed < 0) props.raise("seed", str("must be at least 0, got ", seed));
+  sceneSeed_ = uint64_t(seed);
 }
 
 namespace {
@@ -19,5 +24,9 @@ uint64_t splitmix(uint64_t z) {
 }  // namespace
 
 uint64_t mixSeed(uint64_t a, uint64_t b) { return splitmix(splitmix(a) ^ b); }
+
+uint64_t Sampler::cameraSeed(uint64_t renderSeed) const {
+  return sceneSeed_ == 0 ? renderSeed : mixSeed(renderSeed, sceneSeed_);
+}
 
 }  // namespace femto

@@ -27,9 +27,14 @@ class Sampler : public Object {
 
   uint32_t sampleCount() const { return sampleCount_; }
   void setSampleCount(uint32_t n) { sampleCount_ = n; }
+  /// The seed the camera samples start from for a render seeded `renderSeed`
+  /// (--seed): that seed itself, combined with the scene's `seed` parameter
+  /// (Mitsuba 3) when it gives a non-zero one.
+  uint64_t cameraSeed(uint64_t renderSeed) const;
 
  private:
   uint32_t sampleCount_ = 4;
+  uint64_t sceneSeed_ = 0;
 };
 
 /// Hash two 64-bit values into a well-mixed seed (splitmix64 finaliser).
