@@ -17,8 +17,6 @@
 namespace femto::beams {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a path is abandoned.
-constexpr int kMaxPassThrough = 256;
 /// Specular bounces before a camera path is abandoned (max_depth may be unlimited).
 constexpr int kMaxSpecularBounces = 64;
 /// Photons arriving this close to grazing (|cos| w.r.t. the shading normal)

@@ -17,8 +17,6 @@
 namespace femto::beams {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a photon is abandoned.
-constexpr int kMaxPassThrough = 256;
 /// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
 constexpr size_t kMaxEmitters = 65535;
 constexpr int kMaxPhotonDepth = 32767;

@@ -73,9 +73,6 @@
 namespace femto {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a path is abandoned.
-constexpr int kMaxPassThrough = 256;
-
 /// The mutable state of one camera path.
 struct PathState {
   Ray ray;
