@@ -54,9 +54,8 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
     }
     if (!s.advance(si.p, segmentCounts(settings_.observerTime, s.cameraSegment)) || s.opl >= horizon) return;
     recordEmission(scene, s, si, recorder);
-    if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
-      s.medium = mediumAfter(si, s.ray.d, s.medium);
-      s.ray = si.spawnRay(s.ray.d);
+    if (isPassThrough(si)) {
+      s.crossBoundary(si);
       ++passThrough;
       continue;
     }
@@ -116,10 +115,8 @@ bool CameraTracer::followSpecular(Path& s, const SurfaceInteraction& si, Sampler
   if (!settings_.depthAllowed(s.segments + 1)) return false;
   Vec3f wo = si.toWorld(bs.wo);
   s.throughput *= weight;
-  s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
-  s.medium = mediumAfter(si, wo, s.medium);
+  s.leaveSurface(si, wo, bs.eta);
   s.cameraSegment = false;
-  s.ray = si.spawnRay(wo);
   return true;
 }
 

@@ -123,9 +123,8 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
       }
     }
     if (!hit || !reachSurface(ph, si)) return;
-    if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
-      ph.medium = mediumAfter(si, ph.ray.d, ph.medium);
-      ph.ray = si.spawnRay(ph.ray.d);
+    if (isPassThrough(si)) {
+      ph.crossBoundary(si);
       ++passThrough;
       continue;
     }
@@ -224,9 +223,7 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
   Vec3f wo = si.toWorld(bs.wo);
   ph.power *= weight;
-  ph.surfaceEta *= bs.eta;
-  ph.medium = mediumAfter(si, wo, ph.medium);
-  ph.ray = si.spawnRay(wo);
+  ph.leaveSurface(si, wo, bs.eta);
   if (bs.sampledFlags & BSDFFlags::Delta)
     ph.indirect = true;
   else

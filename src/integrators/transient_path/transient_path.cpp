@@ -152,9 +152,8 @@ class TransientPathIntegrator : public TransientIntegrator {
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
       s.equiangular = false;
-      if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
-        s.medium = mediumAfter(si, s.ray.d, s.medium);
-        s.ray = si.spawnRay(s.ray.d);
+      if (isPassThrough(si)) {
+        s.crossBoundary(si);
         ++passThrough;
         continue;
       }
@@ -325,12 +324,10 @@ class TransientPathIntegrator : public TransientIntegrator {
     Vec3f wo = si.toWorld(bs.wo);
     s.throughput *= weight;
     s.etaScale *= bs.eta * bs.eta;
-    s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
-    s.medium = mediumAfter(si, wo, s.medium);
+    s.leaveSurface(si, wo, bs.eta);
     s.prev.p = si.p;
     s.prev.bsdfPdf = bs.pdf;
     s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
-    s.ray = si.spawnRay(wo);
     return russianRoulette(s, sampler);
   }
 

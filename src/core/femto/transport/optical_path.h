@@ -11,7 +11,9 @@
 
 #include <femto/math/ray.h>
 #include <femto/math/vector.h>
+#include <femto/render/interaction.h>
 #include <femto/render/medium.h>
+#include <femto/transport/volumetric.h>
 
 namespace femto {
 
@@ -32,6 +34,20 @@ struct OpticalPath {
     if (counted) opl += segmentOpl(p);
     vertex = p;
     return std::isfinite(opl);
+  }
+  /// Continue straight on through `si`, an index-matched boundary
+  /// (isPassThrough), maybe into another medium.
+  void crossBoundary(const SurfaceInteraction& si) {
+    medium = mediumAfter(si, ray.d, medium);
+    ray = si.spawnRay(ray.d);
+  }
+  /// Leave surface `si` in world direction `wo`, sampled from its BSDF with
+  /// relative IOR `relativeEta` (BSDFSample::eta: entering a dielectric
+  /// multiplies by int/ext, leaving by ext/int; 1 for reflection).
+  void leaveSurface(const SurfaceInteraction& si, const Vec3f& wo, float relativeEta) {
+    surfaceEta *= relativeEta;
+    medium = mediumAfter(si, wo, medium);
+    ray = si.spawnRay(wo);
   }
 };
 
