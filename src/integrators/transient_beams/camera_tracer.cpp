@@ -44,7 +44,7 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
   s.ray = Ray(cameraRay.o, cameraRay.d);
   s.medium = scene.sensor().medium();
   s.vertex = cameraRay.o;
-  for (int passThrough = 0, bounces = 0; passThrough < kMaxPassThrough && bounces < kMaxSpecularBounces;) {
+  for (int passThrough = 0, bounces = 0; passThrough < MaxPassThrough && bounces < kMaxSpecularBounces;) {
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(s.ray, si);
     if (s.medium && !crossMedium(scene, s, hit, si, sampler, recorder)) return;

@@ -107,7 +107,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   // The camera adds at least one segment to every photon path: a photon
   // segment `depth` ends paths of at least depth + 1 segments.
   for (int passThrough = 0;
-       passThrough < kMaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
+       passThrough < MaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
     SurfaceInteraction si;
     bool hit = scene_.rayIntersect(ph.ray, si);
     if (ph.medium) {

@@ -127,7 +127,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
     s.vertex = s.prev.p = cameraRay.o;
-    for (int passThrough = 0; passThrough < kMaxPassThrough;) {
+    for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
       MediumSample ms;

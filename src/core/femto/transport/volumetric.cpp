@@ -35,7 +35,7 @@ Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec
   }
   Point3f start = from.p;
   Color3f tr(1.0f);
-  for (int crossing = 0; crossing < kMaxPassThrough; ++crossing) {
+  for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(ray, si);
     float eta = medium ? medium->eta() : surfaceEta;

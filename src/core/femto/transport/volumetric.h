@@ -27,7 +27,7 @@ bool isPassThrough(const SurfaceInteraction& si);
 /// Index-matched boundaries a path or connection crosses in a row before it
 /// is abandoned: guards against rays stuck on coincident or self-intersecting
 /// boundaries, where every crossing lands on the same surface again.
-inline constexpr int kMaxPassThrough = 256;
+inline constexpr int MaxPassThrough = 256;
 
 /// Does the scene hold participating media (a shape's interior or exterior,
 /// shapes of groups included, or the sensor's medium)? Surface-only
