@@ -76,7 +76,8 @@ Command addStreakCommand(CLI::App& app) {
     if (row->count() + column->count() == 0) throw CLI::RequiredError("--row Y or --column X");
   });
   addOutputOption(*command, settings->output,
-                  "Output stem: writes STEM.exr and STEM.png (default: <volume stem>_streak_row<Y> or _col<X>)", "STEM");
+                  "Output stem: writes STEM.exr and STEM.png (default: <volume stem>_streak_row<Y> or _col<X>)",
+                  "STEM");
   addExposureOptions(*command, settings->exposure);
   return [settings] { return writeStreak(*settings); };
 }

@@ -4,11 +4,11 @@
 
 #include <femto/math/constants.h>
 #include <femto/render/bsdf.h>
-#include <femto/transport/direct_lighting.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
+#include <femto/transport/direct_lighting.h>
 #include <femto/transport/optical_path.h>
 #include <femto/transport/transient_emission.h>
 #include <femto/transport/volumetric.h>

@@ -89,11 +89,11 @@ PhotonTracer::~PhotonTracer() = default;
 /// The state of one photon: where it is and its OPL there (OpticalPath), and what it carries.
 struct PhotonTracer::Photon : OpticalPath {
   Color3f power{0.0f};
-  float startLevel = 0.0f;   // power.maxValue() when emitted (Russian roulette)
-  int depth = 1;             // segment being travelled (1: leaving the emitter)
-  uint16_t emitter = 0;      // index of the emitter that sent it
-  bool scattered = false;    // scattered in a medium or off a non-specular surface
-  bool indirect = false;     // scattered, or bounced off a specular surface
+  float startLevel = 0.0f;           // power.maxValue() when emitted (Russian roulette)
+  int depth = 1;                     // segment being travelled (1: leaving the emitter)
+  uint16_t emitter = 0;              // index of the emitter that sent it
+  bool scattered = false;            // scattered in a medium or off a non-specular surface
+  bool indirect = false;             // scattered, or bounced off a specular surface
   bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
 };
 
@@ -160,8 +160,8 @@ bool PhotonTracer::emit(Photon& ph, Sampler& sampler) const {
   return true;
 }
 
-MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceInteraction& si, bool store,
-                                       Sampler& sampler, std::vector<Beam>& beams, Color3f& arriving) const {
+MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceInteraction& si, bool store, Sampler& sampler,
+                                       std::vector<Beam>& beams, Color3f& arriving) const {
   if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
     // From the exact vertex, so the beam's OPL and geometry agree.
     float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);

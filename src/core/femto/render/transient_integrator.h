@@ -10,9 +10,9 @@
 
 #include <femto/math/constants.h>
 #include <femto/math/ray.h>
-#include <femto/time/emission_pulse.h>
-#include <femto/render/integrator.h>
 #include <femto/math/spectrum.h>
+#include <femto/render/integrator.h>
+#include <femto/time/emission_pulse.h>
 #include <femto/time/time_deposit.h>
 #include <femto/time/time_grid.h>
 
