@@ -19,8 +19,4 @@ Command addStreakCommand(CLI::App& app);
 Command addIntegrateCommand(CLI::App& app);
 Command addProfileCommand(CLI::App& app);
 
-/// Adds `-p,--plugin-dir DIR` (repeatable) to `command`; the returned action puts
-/// the directories first in the plugin search path, in the order given.
-std::function<void()> addPluginDirOption(CLI::App& command, std::vector<std::string>& dirs);
-
 }  // namespace femto::cli

@@ -10,6 +10,7 @@
 #include <femto/base/error.h>
 #include <femto/image/image_io.h>
 
+#include "command_options.h"
 #include "commands.h"
 #include "compare_report.h"
 
@@ -62,7 +63,7 @@ Command addCompareCommand(CLI::App& app) {
   command->add_option("--mask", o->mask, "Compare only pixels where this image (PNG, EXR) is nonzero")
       ->type_name("IMAGE")
       ->check(CLI::ExistingFile);
-  command->add_option("--bins", o->bins, "Volumes: compare only time bins FIRST..END-1")->type_name("FIRST:END");
+  addBinRangeOption(*command, o->bins, "Volumes: compare only time bins FIRST..END-1");
   command->add_option("--epsilon", o->epsilon, "relMSE's epsilon: mean (t-r)^2 / (r^2 + epsilon)")
       ->type_name("E")
       ->capture_default_str();

@@ -18,7 +18,7 @@
 #include <femto/view/running_integral.h>
 #include <femto/film/volume_scan.h>
 
-#include "arguments.h"
+#include "command_options.h"
 #include "commands.h"
 #include "ffmpeg.h"
 #include "view_options.h"
@@ -132,32 +132,21 @@ Command addFramesCommand(CLI::App& app) {
   auto settings = std::make_shared<FramesSettings>();
   CLI::App* command =
       app.add_subcommand("frames", "Write the time bins of a transient volume (.npy) as PNG frames, GIF, MP4");
-  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("-o,--output", settings->output, "Folder for the frames (default: <volume stem>_pngs)")
-      ->type_name("DIR");
+  addVolumeArgument(*command, settings->volume);
+  addOutputOption(*command, settings->output, "Folder for the frames (default: <volume stem>_pngs)", "DIR");
   addExposureOptions(*command, settings->exposure);
-  command->add_option("--bins", settings->bins, "Only bins FIRST to END-1 (default: all)")->type_name("FIRST:END");
-  command->add_option("--every", settings->every, "Only every K-th bin of the range")
-      ->type_name("K")
-      ->check(PositiveInteger);
+  addBinRangeOption(*command, settings->bins, "Only bins FIRST to END-1 (default: all)");
+  addCountOption(*command, "--every", settings->every, "Only every K-th bin of the range", "K");
   command->add_flag("--running-integral", settings->runningIntegral,
                     "Show the running integral over time: the view of a continuous source switched on at time 0");
   command->add_flag("--label", settings->label,
                     "Burn each frame's time into its top-left corner (bin centre in OPL from the volume's sidecar)");
   command->add_flag("--contact-sheet", settings->contactSheet, "Also write contact_sheet.png (evenly spaced frames)");
-  command->add_option("--sheet-frames", settings->sheetCount, "Frames on the contact sheet (default 16)")
-      ->type_name("N")
-      ->check(PositiveInteger);
-  command->add_option("--sheet-columns", settings->sheetColumns, "Columns of the contact sheet (default 4)")
-      ->type_name("N")
-      ->check(PositiveInteger);
+  addCountOption(*command, "--sheet-frames", settings->sheetCount, "Frames on the contact sheet (default 16)");
+  addCountOption(*command, "--sheet-columns", settings->sheetColumns, "Columns of the contact sheet (default 4)");
   command->add_flag("--gif", settings->gif, "Also write sequence.gif (needs ffmpeg)");
   command->add_flag("--mp4", settings->mp4, "Also write sequence.mp4, H.264 (needs ffmpeg)");
-  command->add_option("--fps", settings->fps, "Frames per second of the GIF/MP4 (default 24)")
-      ->type_name("N")
-      ->check(PositiveInteger);
+  addCountOption(*command, "--fps", settings->fps, "Frames per second of the GIF/MP4 (default 24)");
   return [settings] { return writeFramePngs(*settings); };
 }
 

@@ -8,6 +8,7 @@
 #include <femto/film/volume_info.h>
 #include <femto/view/running_integral.h>
 
+#include "command_options.h"
 #include "commands.h"
 
 namespace fs = std::filesystem;
@@ -43,11 +44,8 @@ Command addIntegrateCommand(CLI::App& app) {
   auto settings = std::make_shared<IntegrateSettings>();
   CLI::App* command = app.add_subcommand(
       "integrate", "Write the running integral over time of a transient volume (continuous emission), as .npy");
-  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("-o,--output", settings->output, "Output volume (default: <volume stem>_integral.npy)")
-      ->type_name("FILE");
+  addVolumeArgument(*command, settings->volume);
+  addOutputOption(*command, settings->output, "Output volume (default: <volume stem>_integral.npy)");
   return [settings] { return integrate(*settings); };
 }
 

@@ -3,7 +3,7 @@
 #include <femto/base/error.h>
 #include <femto/core/plugin.h>
 
-#include "commands.h"
+#include "command_options.h"
 
 namespace femto::cli {
 

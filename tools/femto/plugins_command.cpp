@@ -6,6 +6,7 @@
 
 #include <femto/core/plugin.h>
 
+#include "command_options.h"
 #include "commands.h"
 
 namespace femto::cli {

@@ -12,6 +12,7 @@
 #include <femto/film/volume_info.h>
 #include <femto/view/exposure.h>
 
+#include "command_options.h"
 #include "commands.h"
 #include "view_options.h"
 
@@ -73,14 +74,12 @@ Command addProfileCommand(CLI::App& app) {
   auto settings = std::make_shared<ProfileSettings>();
   CLI::App* command =
       app.add_subcommand("profile", "Write radiance against time bin at chosen pixels of a transient volume, as CSV");
-  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  addVolumeArgument(*command, settings->volume);
   command->add_option("--pixel", settings->pixels, "Pixel X,Y (column, row; repeatable)")
       ->type_name("X,Y")
       ->required()
       ->allow_extra_args(false);
-  command->add_option("-o,--output", settings->output, "CSV file (default: standard output)")->type_name("FILE");
+  addOutputOption(*command, settings->output, "CSV file (default: standard output)");
   return [settings] { return writeProfiles(*settings); };
 }
 

@@ -15,6 +15,7 @@
 #include <femto/xml/loader.h>
 
 #include "arguments.h"
+#include "command_options.h"
 #include "commands.h"
 #include "interrupt.h"
 
@@ -90,18 +91,13 @@ Command addRenderCommand(CLI::App& app) {
   auto s = std::make_shared<RenderSettings>();
   CLI::App* command = app.add_subcommand("render", "Render a Mitsuba XML scene to an OpenEXR image");
   command->add_option("scene", s->scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required()->check(CLI::ExistingFile);
-  command->add_option("-o,--output", s->output, "Output image (default: <scene name>.exr in the current directory)")
-      ->type_name("FILE");
+  addOutputOption(*command, s->output, "Output image (default: <scene name>.exr in the current directory)");
   command->add_option("-D,--define", s->defines, "Set a scene <default> or $name: -D spp=64 (repeatable)")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);
-  command->add_option("-t,--threads", s->threads, "Worker threads (default: all cores)")
-      ->type_name("N")
-      ->check(PositiveInteger);
+  addCountOption(*command, "-t,--threads", s->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", s->seed, "Base random seed; the image depends only on scene and seed")->type_name("N");
-  command->add_option("--spp", s->sampleCount, "Samples per pixel (overrides the scene's sampler)")
-      ->type_name("N")
-      ->check(PositiveInteger);
+  addCountOption(*command, "--spp", s->sampleCount, "Samples per pixel (overrides the scene's sampler)");
   command->add_option("--resolution", s->resolution, "Film size (overrides the scene's film)")->type_name("WxH");
   command->add_flag("--strict", s->strict, "Treat unused scene parameters as errors");
   command->add_flag("--no-progress", s->noProgress, "Do not draw the progress bar");

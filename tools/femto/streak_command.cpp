@@ -10,6 +10,7 @@
 #include <femto/view/display.h>
 #include <femto/view/streak.h>
 
+#include "command_options.h"
 #include "commands.h"
 #include "view_options.h"
 
@@ -62,9 +63,7 @@ Command addStreakCommand(CLI::App& app) {
   auto settings = std::make_shared<StreakSettings>();
   CLI::App* command = app.add_subcommand(
       "streak", "Write the x-t slice (streak image) of a transient volume at one row, or the y-t slice at one column");
-  command->add_option("volume", settings->volume, "Transient volume written by a transient film (out.npy)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  addVolumeArgument(*command, settings->volume);
   CLI::Option* row = command->add_option("--row", settings->row, "Image row Y (0 = top): x across, time down")
                           ->type_name("Y")
                           ->check(CLI::NonNegativeNumber);
@@ -76,9 +75,9 @@ Command addStreakCommand(CLI::App& app) {
   command->parse_complete_callback([row, column] {
     if (row->count() + column->count() == 0) throw CLI::RequiredError("--row Y or --column X");
   });
-  command->add_option("-o,--output", settings->output,
-                      "Output stem: writes STEM.exr and STEM.png (default: <volume stem>_streak_row<Y> or _col<X>)")
-      ->type_name("STEM");
+  addOutputOption(*command, settings->output,
+                  "Output stem: writes STEM.exr and STEM.png (default: <volume stem>_streak_row<Y> or _col<X>)",
+                  "STEM");
   addExposureOptions(*command, settings->exposure);
   return [settings] { return writeStreak(*settings); };
 }

@@ -92,7 +92,7 @@ class DirectIntegrator final : public SamplingIntegrator {
   /// bound media; `distance` is measured from ray.o across them.
   static bool intersectSkippingInterfaces(const Scene& scene, Ray ray, SurfaceInteraction& si, float& distance) {
     distance = 0.0f;
-    for (int crossings = 0; crossings < 256; ++crossings) {
+    for (int crossings = 0; crossings < MaxPassThrough; ++crossings) {
       if (!scene.rayIntersect(ray, si)) return false;
       distance += si.t;
       if (si.bsdf() || si.emitter()) return true;

@@ -33,23 +33,6 @@
 namespace femto {
 namespace {
 
-/// Steady-state radiance of a transient integrator's sample: the sum of all
-/// its time-stamped contributions (like the steady film path of
-/// TransientIntegrator::render).
-class SteadySumRecorder final : public RadianceRecorder {
- public:
-  void add(double, const Color3f& value) override { sum += value; }
-  void addInterval(double, double, const Color3f& value) override { sum += value; }
-  // Pulses are normalised (continuous: the steady value is the total), so they do not change the sum.
-  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
-  double horizon() const override { return Infinity; }
-  const TimeGrid& timeGrid() const override { return grid_; }
-  Color3f sum{0.0f};
-
- private:
-  TimeGrid grid_;
-};
-
 /// Radiance along a camera ray from a nested integrator of either interface.
 using RadianceFunction = std::function<Color3f(const Ray&, const Scene&, Sampler&)>;
 
@@ -58,9 +41,7 @@ RadianceFunction radianceOf(const ObjectRef& integrator) {
     return [sampling](const Ray& ray, const Scene& scene, Sampler& sampler) { return sampling->Li(ray, scene, sampler); };
   if (auto transient = std::dynamic_pointer_cast<TransientIntegrator>(integrator))
     return [transient](const Ray& ray, const Scene& scene, Sampler& sampler) {
-      SteadySumRecorder recorder;
-      transient->sample(scene, ray, sampler, recorder);
-      return recorder.sum;
+      return transient->steadyRadiance(scene, ray, sampler);
     };
   return nullptr;
 }

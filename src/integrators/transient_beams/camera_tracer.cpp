@@ -4,11 +4,13 @@
 
 #include <femto/math/constants.h>
 #include <femto/render/bsdf.h>
-#include <femto/transport/direct_lighting.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
+#include <femto/transport/direct_lighting.h>
+#include <femto/transport/optical_path.h>
+#include <femto/transport/transient_emission.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
@@ -17,8 +19,6 @@
 namespace femto::beams {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a path is abandoned.
-constexpr int kMaxPassThrough = 256;
 /// Specular bounces before a camera path is abandoned (max_depth may be unlimited).
 constexpr int kMaxSpecularBounces = 64;
 /// Photons arriving this close to grazing (|cos| w.r.t. the shading normal)
@@ -27,16 +27,13 @@ constexpr float kMinPhotonCosine = 1e-4f;
 
 }  // namespace
 
-/// The mutable state of one camera path.
-struct CameraTracer::Path {
-  Ray ray;                    // ray.o may be offset off a surface; `vertex` is exact
-  Point3f vertex;             // where the current segment starts
-  const Medium* medium = nullptr;
-  float surfaceEta = 1.0f;    // refractive index where there is no medium
-  double opl = 0.0;           // OPL at `vertex`
+/// The mutable state of one camera path: where it is and its OPL there
+/// (OpticalPath), and what it carries.
+struct CameraTracer::Path : OpticalPath {
   bool cameraSegment = true;  // no (specular) scattering vertex yet
   Color3f throughput{1.0f};
   int segments = 0;           // camera segments completed before the current one
+  ScatterOrigin prev;         // camera rays and specular bounces (delta): emission found by a ray counts fully
 };
 
 void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) {
@@ -47,69 +44,80 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
   s.ray = Ray(cameraRay.o, cameraRay.d);
   s.medium = scene.sensor().medium();
   s.vertex = cameraRay.o;
-  ScatterOrigin prev;  // camera rays and specular bounces: emission found by a ray counts fully
-  prev.delta = true;
-  for (int passThrough = 0, bounces = 0; passThrough < kMaxPassThrough && bounces < kMaxSpecularBounces;) {
+  for (int passThrough = 0, bounces = 0; passThrough < MaxPassThrough && bounces < kMaxSpecularBounces;) {
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(s.ray, si);
-    if (s.medium) {
-      float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, horizon);
-      if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, sampler, recorder);
-      if (!hit) return;  // escaping through a medium: attenuated to nothing
-      s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
-      if (s.throughput.isBlack()) return;
-    }
-    const int depth = s.segments + 1;  // the segment just travelled
+    if (s.medium && !crossMedium(scene, s, hit, si, sampler, recorder)) return;
     if (!hit) {
-      if (!(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth))
-        for (const Emitter* emitter : scene.environmentEmitters()) {
-          Color3f Le = environmentFound(scene, s.ray, prev, emitter);
-          if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, emitter->pulse());
-        }
+      recordEnvironment(scene, s, recorder);
       return;
     }
-    float eta = s.medium ? s.medium->eta() : s.surfaceEta;
-    // OPL between exact vertices: ray offsets off surfaces must not shorten it.
-    if (settings_.observerTime || !s.cameraSegment) s.opl += double(eta) * distance(s.vertex, si.p);
-    s.vertex = si.p;
-    if (!std::isfinite(s.opl) || s.opl >= horizon) return;
-    if (si.emitter() && !(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(depth)) {
-      Color3f Le = emissionFound(scene, si, s.ray.d, si.t, prev);  // prev.delta: the distance is unused
-      if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
-    }
+    if (!s.advance(si.p, segmentCounts(settings_.observerTime, s.cameraSegment)) || s.opl >= horizon) return;
+    recordEmission(scene, s, si, recorder);
     if (isPassThrough(si)) {
-      s.medium = mediumAfter(si, s.ray.d, s.medium);
-      s.ray = si.spawnRay(s.ray.d);
+      s.crossBoundary(si);
       ++passThrough;
       continue;
     }
-    s.segments = depth;
-    const BSDF& bsdf = *si.bsdf();
-    if (bsdf.hasDelay()) {  // scattering here takes time: it delays NEE, surface photons and specular paths alike
-      s.opl += bsdf.sampleDelay(sampler.next1D());
-      if (s.opl >= horizon) return;
-    }
-    if (bsdf.hasSmooth()) {
-      nextEvent(scene, s, si, sampler, recorder);
-      gatherSurfacePhotons(scene, s, si, recorder);
-      if (!(bsdf.flags() & BSDFFlags::Delta)) return;
-    }
-    // Follow the specular components (mirror, glass, a coating's reflection):
-    // a sample that picks a smooth component ends the path, which the
-    // estimates above already covered.
-    BSDFSample bs;
-    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
-    if (!(bs.pdf > 0.0f) || weight.isBlack() || !(bs.sampledFlags & BSDFFlags::Delta)) return;
-    if (!settings_.depthAllowed(s.segments + 1)) return;
-    Vec3f wo = si.toWorld(bs.wo);
-    s.throughput *= weight;
-    s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
-    s.medium = mediumAfter(si, wo, s.medium);
-    s.cameraSegment = false;
-    s.ray = si.spawnRay(wo);
+    if (!scatterOnSurface(scene, s, si, sampler, recorder)) return;
     passThrough = 0;
     ++bounces;
   }
+}
+
+bool CameraTracer::crossMedium(const Scene& scene, Path& s, bool hit, const SurfaceInteraction& si, Sampler& sampler,
+                               RadianceRecorder& recorder) {
+  float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, recorder.horizon());
+  if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, sampler, recorder);
+  if (!hit) return false;  // escaping through a medium: attenuated to nothing
+  s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
+  return !s.throughput.isBlack();
+}
+
+bool CameraTracer::emissionCounts(const Path& s) const {
+  return !(settings_.hideEmitters && s.segments == 0) && settings_.depthAllowed(s.segments + 1);
+}
+
+void CameraTracer::recordEnvironment(const Scene& scene, const Path& s, RadianceRecorder& recorder) const {
+  if (emissionCounts(s)) recordEnvironmentEmission(scene, s.ray, s.prev, s.opl, s.throughput, recorder);
+}
+
+void CameraTracer::recordEmission(const Scene& scene, const Path& s, const SurfaceInteraction& si,
+                                  RadianceRecorder& recorder) const {
+  if (!si.emitter() || !emissionCounts(s)) return;
+  // prev.delta: the distance is unused.
+  recordSurfaceEmission(scene, si, s.ray.d, si.t, s.prev, s.opl, s.throughput, recorder);
+}
+
+bool CameraTracer::scatterOnSurface(const Scene& scene, Path& s, const SurfaceInteraction& si, Sampler& sampler,
+                                    RadianceRecorder& recorder) {
+  ++s.segments;
+  const BSDF& bsdf = *si.bsdf();
+  if (bsdf.hasDelay()) {  // scattering here takes time: it delays NEE, surface photons and specular paths alike
+    s.opl += bsdf.sampleDelay(sampler.next1D());
+    if (s.opl >= recorder.horizon()) return false;
+  }
+  if (bsdf.hasSmooth()) {
+    nextEvent(scene, s, si, sampler, recorder);
+    gatherSurfacePhotons(scene, s, si, recorder);
+    if (!(bsdf.flags() & BSDFFlags::Delta)) return false;
+  }
+  return followSpecular(s, si, sampler);
+}
+
+bool CameraTracer::followSpecular(Path& s, const SurfaceInteraction& si, Sampler& sampler) const {
+  // The specular components (mirror, glass, a coating's reflection): a sample
+  // that picks a smooth component ends the path, which the estimates at this
+  // vertex already covered.
+  BSDFSample bs;
+  Color3f weight = si.bsdf()->sample(si, sampler.next1D(), sampler.next2D(), bs);
+  if (!(bs.pdf > 0.0f) || weight.isBlack() || !(bs.sampledFlags & BSDFFlags::Delta)) return false;
+  if (!settings_.depthAllowed(s.segments + 1)) return false;
+  Vec3f wo = si.toWorld(bs.wo);
+  s.throughput *= weight;
+  s.leaveSurface(si, wo, bs.eta);
+  s.cameraSegment = false;
+  return true;
 }
 
 void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sampler& sampler,
@@ -127,7 +135,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   segment.tMax = tMax;
   // Observer time off: the camera's first segment adds no OPL (its beams
   // then show where light is, not when the camera sees it).
-  segment.eta = (settings_.observerTime || !s.cameraSegment) ? medium.eta() : 0.0f;
+  segment.eta = segmentCounts(settings_.observerTime, s.cameraSegment) ? medium.eta() : 0.0f;
   const std::vector<Beam>& beams = maps_.beams.beams();
   maps_.beams.queryUnsorted(segment, scratch_, marks_);
   ++stats_.segments;

@@ -97,6 +97,26 @@ class CameraTracer {
 
  private:
   struct Path;
+  // The steps of sample(), in path order.
+  /// The current segment inside a medium, up to `si` when `hit`: gathers the
+  /// beams along it and attenuates the throughput; false when the path ends.
+  bool crossMedium(const Scene& scene, Path& path, bool hit, const SurfaceInteraction& si, Sampler& sampler,
+                   RadianceRecorder& recorder);
+  /// Whether emission the current segment finds counts (hide_emitters, max_depth).
+  bool emissionCounts(const Path& path) const;
+  /// The path left the scene: environment emission.
+  void recordEnvironment(const Scene& scene, const Path& path, RadianceRecorder& recorder) const;
+  /// The path reached `si`: its emission, if it is an emitter.
+  void recordEmission(const Scene& scene, const Path& path, const SurfaceInteraction& si,
+                      RadianceRecorder& recorder) const;
+  /// A scattering surface: its delay, then NEE and surface photons at a
+  /// smooth BSDF; true when the path continues along a specular component.
+  bool scatterOnSurface(const Scene& scene, Path& path, const SurfaceInteraction& si, Sampler& sampler,
+                        RadianceRecorder& recorder);
+  /// Sample the BSDF at `si`; true (and the path turned) for a specular
+  /// component within max_depth.
+  bool followSpecular(Path& path, const SurfaceInteraction& si, Sampler& sampler) const;
+  // The estimates along the way.
   void gatherBeams(const Scene& scene, const Path& path, float tMax, Sampler& sampler, RadianceRecorder& recorder);
   void nextEvent(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                  RadianceRecorder& recorder);

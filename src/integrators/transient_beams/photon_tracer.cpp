@@ -11,14 +11,13 @@
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/transport/optical_path.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/medium_extent.h>
 
 namespace femto::beams {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a photon is abandoned.
-constexpr int kMaxPassThrough = 256;
 /// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
 constexpr size_t kMaxEmitters = 65535;
 constexpr int kMaxPhotonDepth = 32767;
@@ -62,21 +61,6 @@ bool isAtInfinity(const Emitter& emitter, const Point3f& ref) {
   return ds.dist == Infinity;
 }
 
-/// The state of one photon.
-struct Photon {
-  Ray ray;                   // ray.o may be offset off a surface; `vertex` is exact
-  Point3f vertex;            // where the current segment starts (emitter, scattering or surface point)
-  Color3f power{0.0f};
-  double opl = 0.0;
-  const Medium* medium = nullptr;
-  float surfaceEta = 1.0f;   // refractive index where there is no medium
-  int depth = 1;             // segment being travelled (1: leaving the emitter)
-  uint16_t emitter = 0;      // index of the emitter that sent it
-  bool scattered = false;    // scattered in a medium or off a non-specular surface
-  bool indirect = false;     // scattered, or bounced off a specular surface
-  bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
-};
-
 /// A photon point's power in beam units (ray_point.h): the power arriving at
 /// a free-flight event times T(t)/p(t), i.e. MediumSample::weight
 /// (sigma_s T/p) over sigma_s. Then sum_i Phi_i delta(x - x_i) has the
@@ -102,15 +86,57 @@ PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, dou
 
 PhotonTracer::~PhotonTracer() = default;
 
+/// The state of one photon: where it is and its OPL there (OpticalPath), and what it carries.
+struct PhotonTracer::Photon : OpticalPath {
+  Color3f power{0.0f};
+  float startLevel = 0.0f;           // power.maxValue() when emitted (Russian roulette)
+  int depth = 1;                     // segment being travelled (1: leaving the emitter)
+  uint16_t emitter = 0;              // index of the emitter that sent it
+  bool scattered = false;            // scattered in a medium or off a non-specular surface
+  bool indirect = false;             // scattered, or bounced off a specular surface
+  bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
+};
+
 void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
                          bool storeBeams) {
   if (emitterPower_.size() == 0 || !(emitterPower_.integral() > 0.0f)) return;
   Sampler& sampler = *sampler_;
   sampler.startPixel(seed, index);
+  Photon ph;
+  if (!emit(ph, sampler)) return;
+  // The camera adds at least one segment to every photon path: a photon
+  // segment `depth` ends paths of at least depth + 1 segments.
+  for (int passThrough = 0;
+       passThrough < MaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
+    SurfaceInteraction si;
+    bool hit = scene_.rayIntersect(ph.ray, si);
+    if (ph.medium) {
+      // Beams and points (zero-length beams at scattering vertices) obey the same store rule.
+      const bool store = storeBeams && (settings_.store == BeamStore::All || !ph.scattered);
+      Color3f arriving;
+      const MediumSample ms = crossMedium(ph, hit, si, store, sampler, beams, arriving);
+      if (ph.power.isBlack()) return;
+      if (ms.scattered) {
+        if (!scatterInMedium(ph, ms, arriving, store, sampler, beams)) return;
+        passThrough = 0;
+        continue;
+      }
+    }
+    if (!hit || !reachSurface(ph, si)) return;
+    if (isPassThrough(si)) {
+      ph.crossBoundary(si);
+      ++passThrough;
+      continue;
+    }
+    if (!scatterOnSurface(ph, si, sampler, photons)) return;
+    passThrough = 0;
+  }
+}
+
+bool PhotonTracer::emit(Photon& ph, Sampler& sampler) const {
   float pick = 0.0f;
   const size_t emitterIndex = emitterPower_.sampleDiscrete(sampler.next1D(), &pick);
   const Emitter& emitter = *scene_.emitters()[emitterIndex];
-  Photon ph;
   ph.emitter = uint16_t(emitterIndex);
   Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
   ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
@@ -125,98 +151,85 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   // clock starts there rather than on the disk (which would delay it by the
   // disk's distance, an artefact of where the disk is placed).
   ph.clockAtFirstSurface = atInfinity_[emitterIndex];
-  if (ph.power.isBlack() || !ph.power.isValid()) return;
-  const bool storePoints = settings_.volumeEstimator == VolumeEstimator::Points;
+  if (ph.power.isBlack() || !ph.power.isValid()) return false;
   // The medium the scene puts the emitter in (Mitsuba 0.6's
   // <emitter><ref id="fog"/></emitter>), else the one its geometry implies.
   ph.medium = emitter.medium() ? emitter.medium() : mediumAround(scene_, ph.ray);
   ph.vertex = ph.ray.o;
-  const float startLevel = ph.power.maxValue();
-  // The camera adds at least one segment to every photon path: a photon
-  // segment `depth` ends paths of at least depth + 1 segments.
-  for (int passThrough = 0;
-       passThrough < kMaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
-    SurfaceInteraction si;
-    bool hit = scene_.rayIntersect(ph.ray, si);
-    float eta = ph.medium ? ph.medium->eta() : ph.surfaceEta;
-    if (ph.medium) {
-      const Medium& medium = *ph.medium;
-      // Beams and points (zero-length beams at scattering vertices) obey the same store rule.
-      const bool storeHere = storeBeams && (settings_.store == BeamStore::All || !ph.scattered);
-      if (storeHere && !storePoints) {
-        // From the exact vertex, so the beam's OPL and geometry agree.
-        float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(medium, ph.opl, horizon_);
-        if (length > 0.0f && std::isfinite(length))
-          beams.push_back(Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, eta, int16_t(ph.depth), ph.emitter, &medium});
-      }
-      MediumSample ms = medium.sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
-      const Color3f arriving = ph.power;
-      ph.power *= ms.weight;
-      if (ph.power.isBlack()) return;
-      if (ms.scattered) {
-        ph.opl += double(eta) * distance(ph.vertex, ms.p);
-        // A photon point: the light arriving here, before this vertex's delay and phase sampling.
-        if (storeHere && storePoints && ph.opl < horizon_) {
-          const Color3f point = pointPower(arriving, ms.weight, medium.scatteringCoefficient(ms.p));
-          if (!point.isBlack())
-            beams.push_back(Beam{ms.p, ph.ray.d, 0.0f, point, ph.opl, eta, int16_t(ph.depth), ph.emitter, &medium});
-        }
-        const PhaseFunction& phase = medium.phase();
-        if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
-        if (!(ph.opl < horizon_)) return;
-        Vec3f wo;
-        float pdf = 0.0f;
-        float weight = phase.sample(-ph.ray.d, sampler.next2D(), wo, pdf);
-        if (!(pdf > 0.0f) || !(weight > 0.0f)) return;
-        ph.power *= weight;
-        ph.ray = Ray(ms.p, wo);
-        ph.vertex = ms.p;
-        ph.scattered = ph.indirect = true;
-        ph.clockAtFirstSurface = false;  // (a scene inside an unbounded medium: the clock ran from the disk)
-        ++ph.depth;
-        passThrough = 0;
-        if (!russianRoulette(ph.power, ph.depth, startLevel, sampler)) return;
-        continue;
-      }
-    }
-    if (!hit) return;
-    // OPL between exact vertices: ray offsets off surfaces must not shorten it.
-    if (ph.clockAtFirstSurface)
-      ph.clockAtFirstSurface = false;
-    else
-      ph.opl += double(eta) * distance(ph.vertex, si.p);
-    ph.vertex = si.p;
-    if (!(ph.opl < horizon_)) return;
-    if (isPassThrough(si)) {
-      ph.medium = mediumAfter(si, ph.ray.d, ph.medium);
-      ph.ray = si.spawnRay(ph.ray.d);
-      ++passThrough;
-      continue;
-    }
-    const BSDF& bsdf = *si.bsdf();
-    if (bsdf.hasSmooth() && ph.indirect) {
-      Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
-      photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter});
-    }
-    // A photon stored above has not scattered here yet: the camera side adds
-    // this vertex's delay when it gathers it.
-    if (bsdf.hasDelay()) ph.opl += bsdf.sampleDelay(sampler.next1D());
-    BSDFSample bs;
-    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
-    if (!(bs.pdf > 0.0f) || weight.isBlack()) return;
-    Vec3f wo = si.toWorld(bs.wo);
-    ph.power *= weight;
-    ph.surfaceEta *= bs.eta;
-    ph.medium = mediumAfter(si, wo, ph.medium);
-    ph.ray = si.spawnRay(wo);
-    if (bs.sampledFlags & BSDFFlags::Delta)
-      ph.indirect = true;
-    else
-      ph.scattered = ph.indirect = true;
-    ++ph.depth;
-    passThrough = 0;
-    if (!russianRoulette(ph.power, ph.depth, startLevel, sampler)) return;
+  ph.startLevel = ph.power.maxValue();
+  return true;
+}
+
+MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceInteraction& si, bool store, Sampler& sampler,
+                                       std::vector<Beam>& beams, Color3f& arriving) const {
+  if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
+    // From the exact vertex, so the beam's OPL and geometry agree.
+    float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
+    if (length > 0.0f && std::isfinite(length))
+      beams.push_back(
+          Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium});
   }
+  MediumSample ms = ph.medium->sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
+  arriving = ph.power;
+  ph.power *= ms.weight;
+  return ms;
+}
+
+bool PhotonTracer::scatterInMedium(Photon& ph, const MediumSample& ms, const Color3f& arriving, bool store,
+                                   Sampler& sampler, std::vector<Beam>& beams) const {
+  const Medium& medium = *ph.medium;
+  ph.advance(ms.p);
+  // A photon point: the light arriving here, before this vertex's delay and phase sampling.
+  if (store && settings_.volumeEstimator == VolumeEstimator::Points && ph.opl < horizon_) {
+    const Color3f point = pointPower(arriving, ms.weight, medium.scatteringCoefficient(ms.p));
+    if (!point.isBlack())
+      beams.push_back(Beam{ms.p, ph.ray.d, 0.0f, point, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, &medium});
+  }
+  const PhaseFunction& phase = medium.phase();
+  if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
+  if (!(ph.opl < horizon_)) return false;
+  Vec3f wo;
+  float pdf = 0.0f;
+  float weight = phase.sample(-ph.ray.d, sampler.next2D(), wo, pdf);
+  if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
+  ph.power *= weight;
+  ph.ray = Ray(ms.p, wo);
+  ph.scattered = ph.indirect = true;
+  ph.clockAtFirstSurface = false;  // (a scene inside an unbounded medium: the clock ran from the disk)
+  ++ph.depth;
+  return russianRoulette(ph.power, ph.depth, ph.startLevel, sampler);
+}
+
+bool PhotonTracer::reachSurface(Photon& ph, const SurfaceInteraction& si) const {
+  // A photon from an emitter at infinity starts its clock here (emit).
+  const bool counted = !ph.clockAtFirstSurface;
+  ph.clockAtFirstSurface = false;
+  ph.advance(si.p, counted);
+  return ph.opl < horizon_;
+}
+
+bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sampler& sampler,
+                                    std::vector<SurfacePhoton>& photons) const {
+  const BSDF& bsdf = *si.bsdf();
+  if (bsdf.hasSmooth() && ph.indirect) {
+    Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
+    photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter});
+  }
+  // A photon stored above has not scattered here yet: the camera side adds
+  // this vertex's delay when it gathers it.
+  if (bsdf.hasDelay()) ph.opl += bsdf.sampleDelay(sampler.next1D());
+  BSDFSample bs;
+  Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
+  if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
+  Vec3f wo = si.toWorld(bs.wo);
+  ph.power *= weight;
+  ph.leaveSurface(si, wo, bs.eta);
+  if (bs.sampledFlags & BSDFFlags::Delta)
+    ph.indirect = true;
+  else
+    ph.scattered = ph.indirect = true;
+  ++ph.depth;
+  return russianRoulette(ph.power, ph.depth, ph.startLevel, sampler);
 }
 
 bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const {

@@ -37,6 +37,8 @@
 namespace femto {
 class Scene;
 class Sampler;
+struct MediumSample;
+struct SurfaceInteraction;
 }  // namespace femto
 
 namespace femto::beams {
@@ -64,6 +66,26 @@ class PhotonTracer {
              bool storeBeams = true);
 
  private:
+  struct Photon;
+  // The steps of trace(), in the photon's order; each false ends the photon.
+  /// Pick an emitter (by power) and sample the photon's first ray.
+  bool emit(Photon& photon, Sampler& sampler) const;
+  /// The segment through the photon's medium, up to `si` when `hit`: leaves
+  /// its beam (when `store`), samples a free flight and weights the power by
+  /// it (`arriving`: the power before). Returns the free flight.
+  MediumSample crossMedium(Photon& photon, bool hit, const SurfaceInteraction& si, bool store, Sampler& sampler,
+                           std::vector<Beam>& beams, Color3f& arriving) const;
+  /// A free flight ended in the medium: the photon point (when `store`), the
+  /// phase function's delay and direction, Russian roulette.
+  bool scatterInMedium(Photon& photon, const MediumSample& ms, const Color3f& arriving, bool store, Sampler& sampler,
+                       std::vector<Beam>& beams) const;
+  /// The photon reached surface `si`: its clock advances (or starts, from an
+  /// emitter at infinity); false past the horizon.
+  bool reachSurface(Photon& photon, const SurfaceInteraction& si) const;
+  /// A scattering surface: the surface photon (smooth BSDF, indirect light
+  /// only), the BSDF's delay and direction (importance transport), Russian roulette.
+  bool scatterOnSurface(Photon& photon, const SurfaceInteraction& si, Sampler& sampler,
+                        std::vector<SurfacePhoton>& photons) const;
   /// Russian roulette past rr_depth segments; false ends the photon.
   bool russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const;
 

@@ -64,6 +64,8 @@
 #include <femto/render/emitter.h>
 #include <femto/transport/direct_lighting.h>
 #include <femto/transport/equiangular.h>
+#include <femto/transport/optical_path.h>
+#include <femto/transport/transient_emission.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
@@ -73,16 +75,9 @@
 namespace femto {
 namespace {
 
-/// Index-matched boundaries crossed in a row before a path is abandoned.
-constexpr int kMaxPassThrough = 256;
-
-/// The mutable state of one camera path.
-struct PathState {
-  Ray ray;
-  const Medium* medium = nullptr;
-  float surfaceEta = 1.0f;     // refractive index where there is no medium
-  double opl = 0.0;            // optical path length up to `segmentStart`
-  Point3f segmentStart;        // exact position of the last vertex (camera, scattering or boundary)
+/// The mutable state of one camera path: where it is and its OPL there
+/// (OpticalPath: ray, vertex, opl, medium, surfaceEta), and what it carries.
+struct PathState : OpticalPath {
   bool cameraSegment = true;   // no scattering vertex yet
   Color3f throughput{1.0f};
   float etaScale = 1.0f;       // product of squared relative IORs (for Russian roulette)
@@ -131,8 +126,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     PathState s;
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
-    s.segmentStart = s.prev.p = cameraRay.o;
-    for (int passThrough = 0; passThrough < kMaxPassThrough;) {
+    s.vertex = s.prev.p = cameraRay.o;
+    for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
       MediumSample ms;
@@ -150,15 +145,15 @@ class TransientPathIntegrator : public TransientIntegrator {
         continue;
       }
       if (!hit) {
-        if (!(hideEmitters_ && s.depth == 0) && !discardDirectLight_) recordEnvironment(scene, s, recorder);
+        if (!(hideEmitters_ && s.depth == 0) && !discardDirectLight_)
+          recordEnvironmentEmission(scene, s.ray, s.prev, s.opl, s.throughput, recorder);
         return;
       }
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
       s.equiangular = false;
-      if (isPassThrough(si)) {  // index-matched boundary: continue straight on, maybe into another medium
-        s.medium = mediumAfter(si, s.ray.d, s.medium);
-        s.ray = si.spawnRay(s.ray.d);
+      if (isPassThrough(si)) {
+        s.crossBoundary(si);
         ++passThrough;
         continue;
       }
@@ -177,10 +172,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// Move the path to vertex `p` along the current ray, adding the segment's
   /// OPL (unless it is the camera segment and observer time is off).
   bool advance(PathState& s, const Point3f& p) const {
-    float eta = s.medium ? s.medium->eta() : s.surfaceEta;
-    if (observerTime_ || !s.cameraSegment) s.opl += double(eta) * distance(s.segmentStart, p);
-    s.segmentStart = p;
-    return std::isfinite(s.opl);
+    return s.advance(p, segmentCounts(observerTime_, s.cameraSegment));
   }
 
   /// A real scattering vertex was reached: count the segment toward
@@ -195,15 +187,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   void recordEmission(const Scene& scene, const PathState& s, const SurfaceInteraction& si,
                       RadianceRecorder& recorder) const {
     if (!si.emitter() || (hideEmitters_ && s.depth == 0) || discardDirectLight_) return;
-    Color3f Le = emissionFound(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev);
-    if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, si.emitter()->pulse());
-  }
-
-  void recordEnvironment(const Scene& scene, const PathState& s, RadianceRecorder& recorder) const {
-    for (const Emitter* emitter : scene.environmentEmitters()) {
-      Color3f Le = environmentFound(scene, s.ray, s.prev, emitter);
-      if (!Le.isBlack()) recorder.addPulsed(s.opl, s.opl, s.throughput * Le, emitter->pulse());
-    }
+    recordSurfaceEmission(scene, si, s.ray.d, distance(s.prev.p, si.p), s.prev, s.opl, s.throughput, recorder);
   }
 
   /// Next-event estimation from vertex `ref` (a surface, or a medium point
@@ -275,7 +259,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     ref.n = Normal3f(0.0f);
     Color3f vertex = s.medium->scatteringCoefficient(ref.p) * s.medium->transmittance(s.ray, t, sampler) / pdf;
     if (vertex.isBlack()) return;
-    double opl = s.opl + ((observerTime_ || !s.cameraSegment) ? double(s.medium->eta()) * distance(s.segmentStart, ref.p) : 0.0);
+    double opl = s.opl + (segmentCounts(observerTime_, s.cameraSegment) ? s.segmentOpl(ref.p) : 0.0);
     const PhaseFunction& phase = s.medium->phase();
     if (phase.hasDelay()) opl += phase.sampleDelay(sampler.next1D());
     DirectionSample ds;
@@ -340,12 +324,10 @@ class TransientPathIntegrator : public TransientIntegrator {
     Vec3f wo = si.toWorld(bs.wo);
     s.throughput *= weight;
     s.etaScale *= bs.eta * bs.eta;
-    s.surfaceEta *= bs.eta;  // entering a dielectric multiplies by int/ext, leaving by ext/int
-    s.medium = mediumAfter(si, wo, s.medium);
+    s.leaveSurface(si, wo, bs.eta);
     s.prev.p = si.p;
     s.prev.bsdfPdf = bs.pdf;
     s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
-    s.ray = si.spawnRay(wo);
     return russianRoulette(s, sampler);
   }
 

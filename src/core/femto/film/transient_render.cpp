@@ -18,22 +18,6 @@
 namespace femto {
 namespace {
 
-/// Steady films: the time of arrival is irrelevant, contributions are summed
-/// (no bookkeeping, so the cost is that of a SamplingIntegrator).
-class SumRecorder final : public RadianceRecorder {
- public:
-  void add(double, const Color3f& value) override { sum += value; }
-  void addInterval(double, double, const Color3f& value) override { sum += value; }
-  // Pulses are normalised (continuous: its steady image is the total), so the steady value is the sum.
-  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
-  double horizon() const override { return std::numeric_limits<double>::infinity(); }
-  const TimeGrid& timeGrid() const override { return grid_; }
-  Color3f sum{0.0f};
-
- private:
-  TimeGrid grid_;  // bins == 0: steady
-};
-
 /// Refuse, before rendering, pulses the film cannot deposit exactly.
 void checkEmitterPulses(const Scene& scene, const TransientFilm& film) {
   if (film.timeFilter().type() == TimeFilter::Type::Box) return;
@@ -79,9 +63,7 @@ RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& optio
     std::shared_ptr<const TransientIntegrator> integrator =
         passIntegrator(pass, std::numeric_limits<double>::infinity());
     return [&scene, integrator](const Ray& ray, Sampler& sampler) {
-      SumRecorder recorder;
-      integrator->sample(scene, ray, sampler, recorder);
-      return recorder.sum;
+      return integrator->steadyRadiance(scene, ray, sampler);
     };
   });
 }

@@ -15,6 +15,12 @@ void RadianceRecorder::addPulsed(double opl0, double opl1, const Color3f& value,
     addInterval(opl0 + pulse.offset(), opl1 + pulse.offset(), value);
 }
 
+Color3f TransientIntegrator::steadyRadiance(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+  SteadySumRecorder recorder;
+  sample(scene, ray, sampler, recorder);
+  return recorder.sum;
+}
+
 void TransientIntegrator::readTemporalFilter(const Properties& props) {
   std::string type = props.getString("temporal_filter", "");
   float stddev = props.getFloat("gaussian_stddev", 2.0f);

@@ -8,10 +8,11 @@
 #include <memory>
 #include <optional>
 
+#include <femto/math/constants.h>
 #include <femto/math/ray.h>
-#include <femto/time/emission_pulse.h>
-#include <femto/render/integrator.h>
 #include <femto/math/spectrum.h>
+#include <femto/render/integrator.h>
+#include <femto/time/emission_pulse.h>
 #include <femto/time/time_deposit.h>
 #include <femto/time/time_grid.h>
 
@@ -45,11 +46,31 @@ class RadianceRecorder {
   virtual const TimeGrid& timeGrid() const = 0;
 };
 
+/// The recorder of steady films: the time of arrival is irrelevant, so the
+/// contributions are summed (no bookkeeping: a transient integrator then costs
+/// what a SamplingIntegrator does). Pulses are normalised (a continuous
+/// emitter's steady image is its total), so they do not change the sum.
+class SteadySumRecorder final : public RadianceRecorder {
+ public:
+  void add(double, const Color3f& value) override { sum += value; }
+  void addInterval(double, double, const Color3f& value) override { sum += value; }
+  void addPulsed(double, double, const Color3f& value, const EmissionPulse&) override { sum += value; }
+  double horizon() const override { return Infinity; }
+  const TimeGrid& timeGrid() const override { return grid_; }
+  Color3f sum{0.0f};
+
+ private:
+  TimeGrid grid_;  // bins == 0: steady
+};
+
 class TransientIntegrator : public Integrator {
  public:
   /// Trace one camera sample along `ray` (OPL 0 at the sensor) and report its
   /// contributions to `recorder`.
   virtual void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const = 0;
+  /// The steady radiance of one camera sample along `ray`: the sum of what
+  /// sample() reports (SteadySumRecorder).
+  Color3f steadyRadiance(const Scene& scene, const Ray& ray, Sampler& sampler) const;
   /// Drives the film: transient films get a time-binned volume (streamed),
   /// steady films the ordinary image.
   RenderStats render(const Scene& scene, const RenderOptions& options) const override;

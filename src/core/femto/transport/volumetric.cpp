@@ -10,14 +10,6 @@
 #include <femto/render/shape_group.h>
 
 namespace femto {
-namespace {
-
-/// A connection crossing more boundaries than this is abandoned (guards
-/// against rays stuck on coincident or self-intersecting boundaries).
-constexpr int kMaxBoundaryCrossings = 256;
-
-}  // namespace
-
 const Medium* mediumAfter(const SurfaceInteraction& si, const Vec3f& d, const Medium* current) {
   const Shape* shape = si.shape;
   if (!shape || (!shape->interiorMedium() && !shape->exteriorMedium())) return current;
@@ -43,7 +35,7 @@ Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec
   }
   Point3f start = from.p;
   Color3f tr(1.0f);
-  for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+  for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(ray, si);
     float eta = medium ? medium->eta() : surfaceEta;

@@ -24,6 +24,11 @@ const Medium* mediumAfter(const SurfaceInteraction& si, const Vec3f& d, const Me
 /// of media: shapes without a BSDF, or with a BSDF that is only Null.
 bool isPassThrough(const SurfaceInteraction& si);
 
+/// Index-matched boundaries a path or connection crosses in a row before it
+/// is abandoned: guards against rays stuck on coincident or self-intersecting
+/// boundaries, where every crossing lands on the same surface again.
+inline constexpr int MaxPassThrough = 256;
+
 /// Does the scene hold participating media (a shape's interior or exterior,
 /// shapes of groups included, or the sensor's medium)? Surface-only
 /// integrators use it to say that they ignore them instead of silently
