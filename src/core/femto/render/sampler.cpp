@@ -3,9 +3,7 @@
 namespace femto {
 
 Sampler::Sampler(const Properties& props) {
-  int64_t n = props.getInt("sample_count", 4);
-  if (n <= 0 || n > int64_t(UINT32_MAX)) props.raise("sample_count", str("must be a positive integer, got ", n));
-  sampleCount_ = uint32_t(n);
+  sampleCount_ = uint32_t(props.getInt("sample_count", 4, 1, int64_t(UINT32_MAX)));
 }
 
 namespace {
