@@ -30,8 +30,7 @@ using namespace femto;
 class AmbientOcclusion final : public SamplingIntegrator {
  public:
   explicit AmbientOcclusion(const Properties& props)
-      : samples_(int(props.getInt("samples", 4))), maxDistance_(props.getFloat("max_distance", Infinity)) {
-    if (samples_ < 1) props.raise("samples", str("samples must be at least 1, got ", samples_));
+      : samples_(int(props.getInt("samples", 4, 1, 1 << 20))), maxDistance_(props.getFloat("max_distance", Infinity)) {
     if (!(maxDistance_ > 0)) props.raise("max_distance", str("max_distance must be positive, got ", maxDistance_));
   }
 

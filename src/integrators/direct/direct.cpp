@@ -83,9 +83,7 @@ class DirectIntegrator final : public SamplingIntegrator {
 
  private:
   static int readCount(const Properties& props, const std::string& name, int def) {
-    int64_t n = props.getInt(name, def);
-    if (n < 0 || n > 1 << 16) props.raise(name, str("must be in [0, 65536], got ", n));
-    return int(n);
+    return int(props.getInt(name, def, 0, 1 << 16));
   }
 
   /// Nearest hit that scatters or emits, passing through shapes that only

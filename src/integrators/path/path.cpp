@@ -10,11 +10,13 @@
 // |---------------|---------|---------|---------------------------------------------------|------|
 // | max_depth     | integer | -1      | longest path in segments (-1: no limit)           | -    |
 // | rr_depth      | integer | 5       | depth from which Russian roulette may end paths   | -    |
+// (max_depth and rr_depth: PathDepthSettings, render/path_depth.h)
 // | hide_emitters | boolean | false   | emitters seen directly by the camera appear black | -    |
 #include <femto/core/plugin.h>
 #include <femto/render/bsdf.h>
 #include <femto/transport/direct_lighting.h>
 #include <femto/render/integrator.h>
+#include <femto/render/path_depth.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/transport/volumetric.h>
@@ -24,12 +26,7 @@ namespace femto {
 class PathIntegrator final : public SamplingIntegrator {
  public:
   explicit PathIntegrator(const Properties& props)
-      : maxDepth_(int(props.getInt("max_depth", -1))),
-        rrDepth_(int(props.getInt("rr_depth", 5))),
-        hideEmitters_(props.getBool("hide_emitters", false)) {
-    if (maxDepth_ < -1) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth_));
-    if (rrDepth_ <= 0) props.raise("rr_depth", str("must be at least 1, got ", rrDepth_));
-  }
+      : depth_(PathDepthSettings::read(props)), hideEmitters_(props.getBool("hide_emitters", false)) {}
 
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
     warnIfMediaIgnored(scene, "path");
@@ -38,7 +35,7 @@ class PathIntegrator final : public SamplingIntegrator {
 
   Color3f Li(const Ray& cameraRay, const Scene& scene, Sampler& sampler) const override {
     Color3f L(0.0f), throughput(1.0f);
-    if (maxDepth_ == 0) return L;
+    if (depth_.maxDepth == 0) return L;
     Ray ray = cameraRay;
     // The previous scattering vertex, for weighting emission found by BSDF
     // sampling; camera rays count as delta: no other strategy finds what they see.
@@ -55,7 +52,7 @@ class PathIntegrator final : public SamplingIntegrator {
       // Emission found by the path (a camera ray, or BSDF sampling).
       if (!(hideEmitters_ && depth == 0)) L += throughput * emissionFound(scene, si, ray.d, travelled + si.t, prev);
 
-      if (++depth == maxDepth_) break;  // the next segment would exceed max_depth
+      if (++depth == depth_.maxDepth) break;  // the next segment would exceed max_depth
       const BSDF* bsdf = si.bsdf();
       if (!bsdf) {  // an interface that only bounds media: continue straight on
         travelled += si.t;
@@ -82,7 +79,7 @@ class PathIntegrator final : public SamplingIntegrator {
       // Russian roulette on the throughput, with the radiance scaling of
       // refraction removed so paths inside glass are not killed unfairly
       // (as Mitsuba 3's path integrator).
-      if (depth >= rrDepth_) {
+      if (depth >= depth_.rrDepth) {
         float q = std::min(throughput.maxValue() * etaScale, 0.95f);
         if (!(sampler.next1D() < q)) break;
         throughput = throughput / q;
@@ -92,13 +89,11 @@ class PathIntegrator final : public SamplingIntegrator {
   }
 
   std::string toString() const override {
-    return str("PathIntegrator[max_depth=", maxDepth_, ", rr_depth=", rrDepth_,
-               ", hide_emitters=", hideEmitters_ ? "true" : "false", "]");
+    return str("PathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false", "]");
   }
 
  private:
-  int maxDepth_;
-  int rrDepth_;
+  PathDepthSettings depth_;
   bool hideEmitters_;
 };
 

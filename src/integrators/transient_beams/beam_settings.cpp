@@ -27,58 +27,27 @@ double reduction(float alpha, int pass) {
 BeamSettings BeamSettings::parse(const Properties& props) {
   BeamSettings s;
   s.location = props.location();
-  int64_t passes = props.getInt("passes", 1);
-  if (passes < 1 || passes > 1000000) props.raise("passes", str("must be between 1 and 1000000, got ", passes));
-  s.passes = int(passes);
-  s.photonCount = props.getInt("photon_count", s.photonCount);
-  if (s.photonCount < 1 || s.photonCount > (int64_t(1) << 32))
-    props.raise("photon_count", str("must be between 1 and 2^32 photons per pass, got ", s.photonCount));
+  constexpr int64_t kMaxPhotons = int64_t(1) << 32;
+  s.passes = int(props.getInt("passes", 1, 1, 1000000));
+  s.photonCount = props.getInt("photon_count", s.photonCount, 1, kMaxPhotons, "photons per pass");
   // Beams cost far more per photon than surface photons (a BVH over beam
   // pieces, queried by every camera segment), and an evenly lit medium needs
   // fewer of them: by default only the first 10000 photons leave beams.
-  s.beamPhotonCount = props.getInt("beam_photon_count", s.beamPhotonCount);
-  if (s.beamPhotonCount < 0 || s.beamPhotonCount > (int64_t(1) << 32))
-    props.raise("beam_photon_count", str("must be between 0 (all photons leave beams) and 2^32, got ",
-                                         s.beamPhotonCount));
+  s.beamPhotonCount = props.getInt("beam_photon_count", s.beamPhotonCount, 0, kMaxPhotons, "0: all photons leave beams");
   // 0 (as when absent) asks for the default derived from the scene (resolved()).
-  auto readRadius = [&](const char* name) {
-    if (!props.has(name)) return 0.0f;
-    float r = props.getFloat(name);
-    if (!(r >= 0.0f) || !std::isfinite(r))
-      props.raise(name, str("must be a finite radius > 0 (scene units), or 0 for the default derived from the "
-                            "scene, got ", r));
-    return r;
-  };
-  s.radius = readRadius("radius");
-  s.surfaceRadius = readRadius("surface_radius");
-  s.gatherFraction = props.getFloat("gather_fraction", s.gatherFraction);
-  if (!(s.gatherFraction > 0.0f && s.gatherFraction <= 1.0f))
-    props.raise("gather_fraction", str("must lie in (0, 1] (the probability that a camera segment gathers beams), got ",
-                                       s.gatherFraction));
-  s.alpha = props.getFloat("alpha", s.alpha);
-  if (!(s.alpha > 0.0f && s.alpha <= 1.0f)) props.raise("alpha", str("must lie in (0, 1], got ", s.alpha));
-  int64_t maxDepth = props.getInt("max_depth", -1);
-  if (maxDepth < -1 || maxDepth > 100000) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth));
-  s.maxDepth = int(maxDepth);
-  int64_t rrDepth = props.getInt("rr_depth", s.rrDepth);
-  if (rrDepth < 1 || rrDepth > 100000) props.raise("rr_depth", str("must be at least 1, got ", rrDepth));
-  s.rrDepth = int(rrDepth);
-  std::string store = props.getString("store", "all");
-  if (store == "all")
-    s.store = BeamStore::All;
-  else if (store == "single")
-    s.store = BeamStore::Single;
-  else
-    props.raise("store", str("must be \"all\" (every scattering order) or \"single\" (single scattering), got \"",
-                             store, "\""));
-  std::string estimator = props.getString("volume_estimator", "beams");
-  if (estimator == "beams")
-    s.volumeEstimator = VolumeEstimator::Beams;
-  else if (estimator == "points")
-    s.volumeEstimator = VolumeEstimator::Points;
-  else
-    props.raise("volume_estimator", str("must be \"beams\" (photon beams, ray x beam 1D) or \"points\" (photon "
-                                        "points, the beam radiance estimate), got \"", estimator, "\""));
+  const char* radiusNote = "a radius in scene units; 0: derived from the scene";
+  s.radius = props.getFloat("radius", 0.0f, Range::nonNegative(), radiusNote);
+  s.surfaceRadius = props.getFloat("surface_radius", 0.0f, Range::nonNegative(), radiusNote);
+  s.gatherFraction = props.getFloat("gather_fraction", s.gatherFraction, Range::leftOpen(0, 1),
+                                    "the probability that a camera segment gathers beams");
+  s.alpha = props.getFloat("alpha", s.alpha, Range::leftOpen(0, 1));
+  static_cast<PathDepthSettings&>(s) = PathDepthSettings::read(props);
+  s.store = props.getEnum("store", BeamStore::All, {{"all", BeamStore::All, "every scattering order"},
+                                                    {"single", BeamStore::Single, "single scattering"}});
+  s.volumeEstimator = props.getEnum(
+      "volume_estimator", VolumeEstimator::Beams,
+      {{"beams", VolumeEstimator::Beams, "photon beams, ray x beam 1D"},
+       {"points", VolumeEstimator::Points, "photon points, the beam radiance estimate"}});
   s.observerTime = props.getBool("observer_time", true);
   s.hideEmitters = props.getBool("hide_emitters", false);
   return s;

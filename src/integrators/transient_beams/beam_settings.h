@@ -9,6 +9,7 @@
 #include <femto/base/error.h>
 #include <femto/core/properties.h>
 #include <femto/math/bbox.h>
+#include <femto/render/path_depth.h>
 #include <transient_beams/beam.h>
 
 namespace femto::beams {
@@ -29,7 +30,10 @@ enum class VolumeEstimator {
   Points,
 };
 
-struct BeamSettings {
+/// max_depth (the longest camera + photon path in segments, -1: no limit),
+/// rr_depth (photon segments before Russian roulette may end a photon) and
+/// depthAllowed() come from PathDepthSettings, read with path's rule.
+struct BeamSettings : PathDepthSettings {
   int passes = 1;
   int64_t photonCount = 100000;  // photons traced per pass (all leave surface photons)
   int64_t beamPhotonCount = 10000;  // how many of them (the first ones) leave beams; 0: all
@@ -37,8 +41,6 @@ struct BeamSettings {
   float surfaceRadius = 0.0f;    // surface photon kernel radius of pass 0 (0: derived)
   float gatherFraction = 1.0f;   // probability that a camera segment in a medium gathers beams (weight 1/it)
   float alpha = 0.7f;            // progressive radius reduction, in (0, 1]
-  int maxDepth = -1;             // longest camera + photon path in segments (-1: no limit)
-  int rrDepth = 5;               // photon segments before Russian roulette may end a photon
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;      // the camera segment counts toward the OPL
@@ -91,9 +93,6 @@ struct BeamSettings {
 
   /// Photons per pass that leave beams (the estimate's N for beams).
   int64_t beamPhotons() const { return beamPhotonCount > 0 ? std::min(beamPhotonCount, photonCount) : photonCount; }
-
-  /// Does a path of `segments` segments (camera + photon) stay within max_depth?
-  bool depthAllowed(int segments) const { return maxDepth < 0 || segments <= maxDepth; }
 };
 
 }  // namespace femto::beams

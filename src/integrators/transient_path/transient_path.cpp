@@ -67,6 +67,7 @@
 #include <femto/transport/optical_path.h>
 #include <femto/transport/transient_emission.h>
 #include <femto/render/medium.h>
+#include <femto/render/path_depth.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
@@ -102,12 +103,9 @@ struct TransientPathDefaults {
 class TransientPathIntegrator : public TransientIntegrator {
  public:
   explicit TransientPathIntegrator(const Properties& props, const TransientPathDefaults& defaults = {})
-      : maxDepth_(int(props.getInt("max_depth", defaults.maxDepth))),
-        rrDepth_(int(props.getInt("rr_depth", 5))),
+      : depth_(PathDepthSettings::read(props, defaults.maxDepth)),
         hideEmitters_(props.getBool("hide_emitters", false)),
         observerTime_(props.getBool("observer_time", true)) {
-    if (maxDepth_ < -1) props.raise("max_depth", str("must be -1 (unbounded) or at least 0, got ", maxDepth_));
-    if (rrDepth_ <= 0) props.raise("rr_depth", str("must be at least 1, got ", rrDepth_));
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
       if (props.has("observer_time"))
@@ -121,7 +119,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   }
 
   void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
-    if (maxDepth_ == 0) return;
+    if (depth_.maxDepth == 0) return;
     const double horizon = recorder.horizon();
     PathState s;
     s.ray = cameraRay;
@@ -163,9 +161,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   }
 
   std::string toString() const override {
-    return str("TransientPathIntegrator[max_depth=", maxDepth_, ", rr_depth=", rrDepth_,
-               ", hide_emitters=", hideEmitters_ ? "true" : "false", ", observer_time=",
-               observerTime_ ? "true" : "false", "]");
+    return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
+               ", observer_time=", observerTime_ ? "true" : "false", "]");
   }
 
  private:
@@ -179,7 +176,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// max_depth; false when the path may not scatter again.
   bool enterScatteringVertex(PathState& s) const {
     s.cameraSegment = false;
-    return ++s.depth != maxDepth_;
+    return ++s.depth != depth_.maxDepth;
   }
 
   /// Emission of the surface the path reached, MIS-weighted against emitter
@@ -223,7 +220,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// whether next-event estimation also samples it equiangularly (homogeneous
   /// medium, and a vertex on it may still connect to a light: depth).
   void beginMediumSegment(PathState& s, float tMax) const {
-    s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != maxDepth_;
+    s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
   }
 
@@ -334,15 +331,14 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// Russian roulette on the throughput with the radiance scaling of
   /// refraction removed, so paths inside glass are not killed unfairly.
   bool russianRoulette(PathState& s, Sampler& sampler) const {
-    if (s.depth < rrDepth_) return true;
+    if (s.depth < depth_.rrDepth) return true;
     float q = std::min(s.throughput.maxValue() * s.etaScale, 0.95f);
     if (!(sampler.next1D() < q)) return false;
     s.throughput = s.throughput / q;
     return true;
   }
 
-  int maxDepth_;
-  int rrDepth_;
+  PathDepthSettings depth_;
   bool hideEmitters_;
   bool observerTime_;
   bool discardDirectLight_ = false;

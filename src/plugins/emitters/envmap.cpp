@@ -35,9 +35,8 @@ class EnvironmentMap final : public Emitter {
   explicit EnvironmentMap(const Properties& props)
       : Emitter(props),
         filename_(props.getString("filename")),
-        scale_(props.getFloat("scale", 1.0f)),
+        scale_(props.getFloat("scale", 1.0f, Range::nonNegative())),
         toWorld_(props.getTransform("to_world", Transform())) {
-    if (!(scale_ >= 0.0f) || !std::isfinite(scale_)) props.raise("scale", str("must be finite and >= 0, got ", scale_));
     try {
       image_ = toRGB(readImage(filename_));
     } catch (const Error& e) {

@@ -36,10 +36,8 @@ class ProjectorLight final : public OrientedPointEmitter {
   explicit ProjectorLight(const Properties& props)
       : OrientedPointEmitter(props),
         irradiance_(textureOrColor(props, "irradiance", Color3f(1.0f))),
-        scale_(props.getFloat("scale", 1.0f)) {
-    if (!(scale_ >= 0.0f && std::isfinite(scale_))) props.raise("scale", str("must be finite and >= 0, got ", scale_));
-    fov_ = props.getFloat("fov", 28.8415f);
-    if (!(fov_ > 0.0f && fov_ < 180.0f)) props.raise("fov", str("must be in (0, 180) degrees, got ", fov_));
+        scale_(props.getFloat("scale", 1.0f, Range::nonNegative())) {
+    fov_ = props.getFloat("fov", 28.8415f, Range::open(0, 180), "degrees");
     Point2i size = irradiance_->resolution();
     float aspect = size.x > 0 && size.y > 0 ? float(size.y) / float(size.x) : 1.0f;
     tanX_ = std::tan(degToRad(fov_) * 0.5f);

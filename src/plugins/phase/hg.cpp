@@ -19,8 +19,7 @@ namespace femto {
 
 class HGPhase final : public PhaseFunction {
  public:
-  explicit HGPhase(const Properties& props) : PhaseFunction(props), g_(props.getFloat("g", 0.8f)) {
-    if (!(g_ > -1.0f && g_ < 1.0f)) props.raise("g", str("must lie strictly between -1 and 1, got ", g_));
+  explicit HGPhase(const Properties& props) : PhaseFunction(props), g_(props.getFloat("g", 0.8f, Range::open(-1, 1))) {
   }
 
   float eval(const Vec3f& wi, const Vec3f& wo) const override { return density(-dot(wi, wo)); }

@@ -16,8 +16,7 @@ namespace femto {
 class GaussianFilter final : public ReconstructionFilter {
  public:
   explicit GaussianFilter(const Properties& props) {
-    stddev_ = props.getFloat("stddev", 0.5f);
-    if (!(stddev_ > 0.0f)) props.raise("stddev", str("must be positive, got ", stddev_));
+    stddev_ = props.getFloat("stddev", 0.5f, Range::positive());
     setRadius(4.0f * stddev_);
     alpha_ = -1.0f / (2.0f * stddev_ * stddev_);
     bias_ = std::exp(alpha_ * radius() * radius());

@@ -26,8 +26,7 @@ namespace femto {
 class LowDiscrepancySampler : public DimensionalSampler {
  public:
   explicit LowDiscrepancySampler(const Properties& props) : DimensionalSampler(props) {
-    int64_t dimension = props.getInt("dimension", 4);
-    if (dimension < 1) props.raise("dimension", str("must be positive, got ", dimension));
+    int64_t dimension = props.getInt("dimension", 4, 1, Properties::Unbounded);
     if (sampleCount() > (1u << 30)) props.raise("sample_count", "must be at most 2^30");
     uint32_t n = 1;
     while (n < sampleCount()) n <<= 1;

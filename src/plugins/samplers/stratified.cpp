@@ -27,8 +27,7 @@ class StratifiedSampler : public DimensionalSampler {
  public:
   explicit StratifiedSampler(const Properties& props) : DimensionalSampler(props) {
     jitter_ = props.getBool("jitter", true);
-    int64_t dimension = props.getInt("dimension", 4);
-    if (dimension < 1) props.raise("dimension", str("must be positive, got ", dimension));
+    int64_t dimension = props.getInt("dimension", 4, 1, Properties::Unbounded);
     uint32_t m = 1;
     while (uint64_t(m) * m < sampleCount()) ++m;
     if (uint64_t(m) * m != sampleCount()) {

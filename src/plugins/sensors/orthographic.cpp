@@ -19,9 +19,8 @@ namespace femto {
 class OrthographicCamera final : public Sensor {
  public:
   explicit OrthographicCamera(const Properties& props) : Sensor(props) {
-    nearClip_ = props.getFloat("near_clip", 0.01f);
+    nearClip_ = props.getFloat("near_clip", 0.01f, Range::nonNegative());
     farClip_ = props.getFloat("far_clip", 10000.0f);
-    if (!(nearClip_ >= 0.0f)) props.raise("near_clip", str("must not be negative, got ", nearClip_));
     if (!(farClip_ > nearClip_)) props.raise("far_clip", str("must be larger than near_clip (", nearClip_, ")"));
     // Mitsuba's projective cameras all take a focus distance; an orthographic camera has no lens.
     props.getFloat("focus_distance", farClip_);

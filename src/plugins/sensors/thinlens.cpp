@@ -11,8 +11,6 @@
 // | aperture_radius | float     | required | radius of the aperture, scene units (>= 0; 0 = pinhole) |
 // | focus_distance  | float     | far_clip | distance of the plane in focus, along the view axis     |
 // | to_world, medium, fov, fov_axis, focal_length, near_clip, far_clip, principal_point_offset_x/y, srf | | | as `perspective` (render/projective_camera.h) |
-#include <cmath>
-
 #include <femto/core/plugin.h>
 #include <femto/math/warp.h>
 #include <femto/render/projective_camera.h>
@@ -22,10 +20,7 @@ namespace femto {
 class ThinLensCamera final : public ProjectiveCamera {
  public:
   explicit ThinLensCamera(const Properties& props)
-      : ProjectiveCamera(props, -1.0f), apertureRadius_(props.getFloat("aperture_radius")) {
-    if (!(apertureRadius_ >= 0.0f) || !std::isfinite(apertureRadius_))
-      props.raise("aperture_radius", str("must be finite and at least 0, got ", apertureRadius_));
-  }
+      : ProjectiveCamera(props, -1.0f), apertureRadius_(props.getFloatIn("aperture_radius", Range::nonNegative())) {}
 
   /// Mitsuba 3's thin-lens sample_ray: film position -> point on the focal
   /// plane; aperture sample -> point on the lens; the ray joins them. The

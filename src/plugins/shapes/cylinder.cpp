@@ -32,10 +32,9 @@ class Cylinder final : public Shape {
   explicit Cylinder(const Properties& props) : Shape(props) {
     Point3f p0 = props.getPoint("p0", Point3f(0.0f, 0.0f, 0.0f));
     Point3f p1 = props.getPoint("p1", Point3f(0.0f, 0.0f, 1.0f));
-    float radius = props.getFloat("radius", 1.0f);
+    float radius = props.getFloat("radius", 1.0f, Range::positive());
     Transform toWorld = props.getTransform("to_world", Transform());
     flipNormals_ = props.getBool("flip_normals", false);
-    if (!(radius > 0.0f)) props.raise("radius", str("must be positive, got ", radius));
     Vec3f axis = p1 - p0;
     float height = length(axis);
     if (!(height > 0.0f)) props.raise("p1", "must differ from p0");

@@ -119,11 +119,10 @@ class SerializedMesh final : public TriangleMesh {
  public:
   explicit SerializedMesh(const Properties& props) : TriangleMesh(props) {
     filename_ = props.getString("filename");
-    int64_t index = props.getInt("shape_index", 0);
+    int64_t index = props.getInt("shape_index", 0, 0, Properties::Unbounded);
     Transform toWorld = props.getTransform("to_world", Transform());
     bool flipNormals = props.getBool("flip_normals", false);
     bool faceNormals = props.getBool("face_normals", false);
-    if (index < 0) props.raise("shape_index", str("must be non-negative, got ", index));
     shapeIndex_ = uint32_t(index);
     try {
       read(faceNormals);

@@ -19,10 +19,9 @@ class Sphere final : public Shape {
  public:
   explicit Sphere(const Properties& props) : Shape(props) {
     Point3f center = props.getPoint("center", Point3f(0.0f));
-    float radius = props.getFloat("radius", 1.0f);
+    float radius = props.getFloat("radius", 1.0f, Range::positive());
     Transform toWorld = props.getTransform("to_world", Transform());
     flipNormals_ = props.getBool("flip_normals", false);
-    if (!(radius > 0.0f)) props.raise("radius", str("must be positive, got ", radius));
 
     // A sphere stays a sphere only under a similarity.
     float scale = toWorld.similarityScale();

@@ -35,6 +35,29 @@ TEST(PluginParameters, PathRejectsBadDepthsNamingTheLine) {
   EXPECT_NE(message.find("rr_depth"), std::string::npos) << message;
 }
 
+TEST(PluginParameters, EveryPathIntegratorReadsDepthsWithOneRule) {
+  // path, transient_path (and its mitransient names) and transient_beams
+  // share PathDepthSettings: the same range, the same message, the same line.
+  for (const char* integrator : {"path", "transient_path", "transient_prbvolpath", "transientpath", "transient_beams"}) {
+    SCOPED_TRACE(integrator);
+    const std::string open = str("<integrator type=\"", integrator, "\" version=\"3.0.0\">\n");
+    std::string message =
+        errorMessageOf([&] { load(open + "  <integer name=\"max_depth\" value=\"-2\"/>\n</integrator>"); });
+    EXPECT_EQ(message.rfind(str("params.xml:2: parameter \"max_depth\" of \"", integrator,
+                                "\": must be at least -1 (-1: no limit), got -2"), 0), 0u) << message;
+    message = errorMessageOf([&] { load(open + "\n  <integer name=\"rr_depth\" value=\"0\"/>\n</integrator>"); });
+    EXPECT_EQ(message.rfind(str("params.xml:3: parameter \"rr_depth\" of \"", integrator,
+                                "\": must be at least 1, got 0"), 0), 0u) << message;
+  }
+}
+
+TEST(PluginParameters, DepthsBeyondAnIntMeanNoLimit) {
+  auto integrator = load(R"(<integrator type="path" version="3.0.0"><integer name="max_depth" value="4294967296"/>
+    <integer name="rr_depth" value="3"/></integrator>)");
+  const std::string text = integrator->toString();
+  EXPECT_NE(text.find("max_depth=2147483647, rr_depth=3"), std::string::npos) << text;
+}
+
 TEST(PluginParameters, PathDefaultsAreMitsubas) {
   auto integrator = load(R"(<integrator type="path" version="3.0.0"/>)");
   std::string text = integrator->toString();

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
+#include <limits>
+
 #include <femto/core/properties.h>
 #include <femto/scattering/ior.h>
 
@@ -128,4 +132,134 @@ TEST(NamedIor, UnknownNameIsAnErrorAtItsLine) {
       << message;
   EXPECT_NE(message.find("did you mean \"water\""), std::string::npos) << message;
   EXPECT_NE(errorOf([&] { iorFromProperties(p, "ext_ior", 1.0f); }).find("scene.xml:8: "), std::string::npos);
+}
+
+// Checked getters: ranges, enumerations and their messages.
+
+TEST(PropertiesChecked, IntegerRangeIsInclusiveAndTheDefaultIsUnchecked) {
+  Properties p("film");
+  p.setLocation(at(2));
+  p.setInt("low", 1, at(3));
+  p.setInt("high", 1048576, at(4));
+  p.setInt("zero", 0, at(5));
+  EXPECT_EQ(p.getInt("low", 7, 1, 1 << 20), 1);
+  EXPECT_EQ(p.getInt("high", 7, 1, 1 << 20), 1 << 20);
+  EXPECT_EQ(p.getInt("absent", 7, 1, 5), 7);  // a default outside the range is the plugin's business
+  EXPECT_EQ(errorOf([&] { p.getInt("zero", 7, 1, 1 << 20); }),
+            "scene.xml:5: parameter \"zero\" of \"film\": must be in [1, 1048576], got 0");
+  EXPECT_EQ(errorOf([&] { p.getInt("high", 7, 1, (1 << 20) - 1); }),
+            "scene.xml:4: parameter \"high\" of \"film\": must be in [1, 1048575], got 1048576");
+  EXPECT_TRUE(p.unqueried().empty());
+}
+
+TEST(PropertiesChecked, IntegerWithoutUpperBoundAndNote) {
+  Properties p("path");
+  p.setInt("max_depth", -2, at(6));
+  EXPECT_EQ(errorOf([&] { p.getInt("max_depth", -1, -1, Properties::Unbounded, "-1: no limit"); }),
+            "scene.xml:6: parameter \"max_depth\" of \"path\": must be at least -1 (-1: no limit), got -2");
+}
+
+TEST(PropertiesChecked, RequiredIntegerIsMissingAtTheObjectLine) {
+  Properties p("film");
+  p.setLocation(at(8));
+  EXPECT_EQ(errorOf([&] { p.getIntIn("bins", 1, 10); }),
+            "scene.xml:8: \"film\" is missing the required parameter \"bins\" (<integer>)");
+  p.setInt("bins", 11, at(9));
+  EXPECT_EQ(errorOf([&] { p.getIntIn("bins", 1, 10); }),
+            "scene.xml:9: parameter \"bins\" of \"film\": must be in [1, 10], got 11");
+}
+
+TEST(PropertiesChecked, FloatRangeEndsAreOpenOrClosed) {
+  Properties p("x");
+  p.setFloat("zero", 0.0, at(2));
+  p.setFloat("one", 1.0, at(3));
+  EXPECT_FLOAT_EQ(p.getFloat("zero", 0.5f, Range::closed(0, 1)), 0.0f);
+  EXPECT_FLOAT_EQ(p.getFloat("one", 0.5f, Range::closed(0, 1)), 1.0f);
+  EXPECT_FLOAT_EQ(p.getFloat("one", 0.5f, Range::leftOpen(0, 1)), 1.0f);
+  EXPECT_FLOAT_EQ(p.getFloat("zero", 0.5f, Range::rightOpen(0, 1)), 0.0f);
+  EXPECT_EQ(errorOf([&] { p.getFloat("zero", 0.5f, Range::leftOpen(0, 1)); }),
+            "scene.xml:2: parameter \"zero\" of \"x\": must be in (0, 1], got 0");
+  EXPECT_EQ(errorOf([&] { p.getFloat("one", 0.5f, Range::rightOpen(0, 1)); }),
+            "scene.xml:3: parameter \"one\" of \"x\": must be in [0, 1), got 1");
+  EXPECT_EQ(errorOf([&] { p.getFloat("one", 0.5f, Range::open(0, 1)); }),
+            "scene.xml:3: parameter \"one\" of \"x\": must be in (0, 1), got 1");
+  EXPECT_EQ(errorOf([&] { p.getFloat("zero", 0.5f, Range::open(0, 1)); }),
+            "scene.xml:2: parameter \"zero\" of \"x\": must be in (0, 1), got 0");
+}
+
+TEST(PropertiesChecked, OneSidedFloatRangesRejectInfinityAndNaN) {
+  Properties p("x");
+  p.setFloat("zero", 0.0, at(2));
+  p.setFloat("inf", std::numeric_limits<double>::infinity(), at(3));
+  p.setFloat("nan", std::nan(""), at(4));
+  EXPECT_FLOAT_EQ(p.getFloat("zero", 1.0f, Range::nonNegative()), 0.0f);
+  EXPECT_EQ(errorOf([&] { p.getFloat("zero", 1.0f, Range::positive(), "bins"); }),
+            "scene.xml:2: parameter \"zero\" of \"x\": must be positive and finite (bins), got 0");
+  EXPECT_EQ(errorOf([&] { p.getFloat("inf", 1.0f, Range::nonNegative()); }),
+            "scene.xml:3: parameter \"inf\" of \"x\": must be at least 0 and finite, got inf");
+  EXPECT_EQ(errorOf([&] { p.getFloat("zero", 2.0f, Range::atLeast(1)); }),
+            "scene.xml:2: parameter \"zero\" of \"x\": must be at least 1 and finite, got 0");
+  EXPECT_EQ(errorOf([&] { p.getFloat("zero", 2.0f, Range::greaterThan(0.5)); }),
+            "scene.xml:2: parameter \"zero\" of \"x\": must be greater than 0.5 and finite, got 0");
+  EXPECT_NE(errorOf([&] { p.getFloat("nan", 1.0f, Range::finite()); }).find("scene.xml:4: "), std::string::npos);
+  EXPECT_NE(errorOf([&] { p.getFloat("nan", 1.0f, Range::finite()); }).find("must be finite, got nan"),
+            std::string::npos);
+  EXPECT_FLOAT_EQ(p.getFloat("absent", 3.0f, Range::positive()), 3.0f);
+}
+
+TEST(PropertiesChecked, WrongTypesAreReportedBeforeTheRange) {
+  Properties p("x");
+  p.setString("n", "five", at(7));
+  p.setInt("i", 3, at(8));
+  EXPECT_EQ(errorOf([&] { p.getInt("n", 1, 0, 10); }),
+            "scene.xml:7: parameter \"n\" of \"x\": expected <integer>, got <string>");
+  EXPECT_EQ(errorOf([&] { p.getFloat("n", 1.0f, Range::positive()); }),
+            "scene.xml:7: parameter \"n\" of \"x\": expected <float>, got <string>");
+  EXPECT_FLOAT_EQ(p.getFloat("i", 1.0f, Range::closed(0, 10)), 3.0f);  // an integer where a float is expected
+}
+
+TEST(PropertiesChecked, CheckRangeOfADerivedValueNamesTheParameter) {
+  Properties p("x");
+  p.setFloat("width", -2.0, at(5));
+  EXPECT_NO_THROW(p.checkRange("width", 0.5, Range::positive()));
+  EXPECT_EQ(errorOf([&] { p.checkRange("width", -2.0 * 3.0, Range::positive()); }),
+            "scene.xml:5: parameter \"width\" of \"x\": must be positive and finite, got -6");
+}
+
+namespace {
+enum class Shape { Box, Tent, Gaussian };
+Shape shapeOf(const Properties& p) {
+  return p.getEnum("filter", Shape::Box,
+                   {{"box", Shape::Box}, {"tent", Shape::Tent, "triangular"}, {"gaussian", Shape::Gaussian}});
+}
+}  // namespace
+
+TEST(PropertiesChecked, EnumMatchesNamesAndDefaults) {
+  Properties absent("film");
+  EXPECT_EQ(shapeOf(absent), Shape::Box);
+  EXPECT_EQ(absent.askedNames(), (std::vector<std::string>{"filter"}));  // asked for, for did-you-mean on unused names
+  Properties p("film");
+  p.setString("filter", "gaussian", at(3));
+  EXPECT_EQ(shapeOf(p), Shape::Gaussian);
+  EXPECT_TRUE(p.unqueried().empty());
+  Properties tent("film");
+  tent.setString("filter", "tent", at(3));
+  EXPECT_EQ(shapeOf(tent), Shape::Tent);
+}
+
+TEST(PropertiesChecked, EnumUnknownValueListsTheChoicesWithDidYouMean) {
+  Properties p("film");
+  p.setString("filter", "gausian", at(4));
+  EXPECT_EQ(errorOf([&] { shapeOf(p); }),
+            "scene.xml:4: parameter \"filter\" of \"film\": expected \"box\", \"tent\" (triangular) or \"gaussian\", "
+            "got \"gausian\" (did you mean \"gaussian\"?)");
+  Properties far("film");
+  far.setString("filter", "lanczos", at(6));
+  EXPECT_EQ(errorOf([&] { shapeOf(far); }),
+            "scene.xml:6: parameter \"filter\" of \"film\": expected \"box\", \"tent\" (triangular) or \"gaussian\", "
+            "got \"lanczos\"");
+  Properties wrongType("film");
+  wrongType.setInt("filter", 2, at(7));
+  EXPECT_EQ(errorOf([&] { shapeOf(wrongType); }),
+            "scene.xml:7: parameter \"filter\" of \"film\": expected <string>, got <integer>");
 }

@@ -5,6 +5,34 @@
 #include <femto/core/spelling.h>
 
 namespace femto {
+namespace {
+
+/// A bound as a person writes it: 1048576, not 1.04858e+06.
+std::string bound(double v) {
+  if (v == std::floor(v) && std::abs(v) < 1e15) return str(int64_t(v));
+  return str(v);
+}
+
+/// " (note)" or "".
+std::string parenthesised(const std::string& note) { return note.empty() ? "" : " (" + note + ")"; }
+
+}  // namespace
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  return (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+}
+
+std::string Range::describe() const {
+  const bool hasLo = std::isfinite(lo), hasHi = std::isfinite(hi);
+  if (hasLo && hasHi) return str("in ", loOpen ? "(" : "[", bound(lo), ", ", bound(hi), hiOpen ? ")" : "]");
+  if (hasLo) {
+    if (lo == 0.0 && loOpen) return "positive and finite";
+    return str(loOpen ? "greater than " : "at least ", bound(lo), " and finite");
+  }
+  if (hasHi) return str(hiOpen ? "less than " : "at most ", bound(hi), " and finite");
+  return "finite";
+}
 
 const char* Properties::typeName(Type t) {
   switch (t) {
@@ -166,6 +194,49 @@ ObjectRef Properties::getObject(const std::string& name) const {
   const Entry& e = require(name, Type::Object);
   if (e.type != Type::Object) typeError(name, e, "object");
   return std::get<ObjectRef>(e.value);
+}
+
+int64_t Properties::getInt(const std::string& name, int64_t def, int64_t lo, int64_t hi, const std::string& note) const {
+  return has(name) ? getIntIn(name, lo, hi, note) : def;
+}
+
+int64_t Properties::getIntIn(const std::string& name, int64_t lo, int64_t hi, const std::string& note) const {
+  int64_t v = getInt(name);
+  if (v < lo || v > hi) {
+    std::string range = hi == Unbounded ? str("at least ", lo) : str("in [", lo, ", ", hi, "]");
+    raise(name, str("must be ", range, parenthesised(note), ", got ", v));
+  }
+  return v;
+}
+
+float Properties::getFloat(const std::string& name, float def, const Range& range, const std::string& note) const {
+  return has(name) ? getFloatIn(name, range, note) : def;
+}
+
+float Properties::getFloatIn(const std::string& name, const Range& range, const std::string& note) const {
+  float v = getFloat(name);
+  checkRange(name, v, range, note);
+  return v;
+}
+
+void Properties::checkRange(const std::string& name, double value, const Range& range, const std::string& note) const {
+  if (!range.contains(value)) raise(name, str("must be ", range.describe(), parenthesised(note), ", got ", value));
+}
+
+size_t Properties::choiceIndex(const std::string& name,
+                               const std::vector<std::pair<std::string, std::string>>& choices) const {
+  const std::string value = getString(name);
+  std::vector<std::string> names;
+  for (size_t i = 0; i < choices.size(); ++i) {
+    if (choices[i].first == value) return i;
+    names.push_back(choices[i].first);
+  }
+  std::string expected;
+  for (size_t i = 0; i < choices.size(); ++i) {
+    if (i > 0) expected += i + 1 == choices.size() ? " or " : ", ";
+    expected += str("\"", choices[i].first, "\"", parenthesised(choices[i].second));
+  }
+  raise(name, str("expected ", expected, ", got \"", value, "\"", didYouMean(value, names)));
 }
 
 std::vector<ObjectRef> Properties::objectsOfKind(ObjectKind kind, const std::string& except) const {

@@ -3,6 +3,9 @@
 // its type, its file:line and whether the plugin read it, so the loader (not
 // each plugin) can report parameters nobody used, and wrong types are reported
 // in XML words ("expected <float>, got <rgb>").
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -17,6 +20,39 @@
 #include <femto/math/spectrum.h>
 
 namespace femto {
+
+/// The values a float parameter may take: an interval whose ends are each
+/// open or closed, possibly unbounded. Non-finite values (NaN, inf) are never
+/// in range. Reads like the parameter table: Range::positive(),
+/// Range::closed(0, 1), Range::leftOpen(0, 1) for (0, 1].
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool loOpen = false, hiOpen = false;
+
+  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }      // [lo, hi]
+  static Range open(double lo, double hi) { return {lo, hi, true, true}; }          // (lo, hi)
+  static Range leftOpen(double lo, double hi) { return {lo, hi, true, false}; }     // (lo, hi]
+  static Range rightOpen(double lo, double hi) { return {lo, hi, false, true}; }    // [lo, hi)
+  static Range atLeast(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, true}; }  // >= lo
+  static Range greaterThan(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, true}; }  // > lo
+  static Range positive() { return greaterThan(0.0); }     // > 0
+  static Range nonNegative() { return atLeast(0.0); }      // >= 0
+  static Range finite() { return {}; }                     // any finite value
+
+  bool contains(double v) const;
+  /// What the message says: "in (0, 1]", "positive", ">= 0", "finite".
+  std::string describe() const;
+};
+
+/// One value of a string-valued enumeration: its spelling in the scene, the
+/// C++ value and, optionally, what it means (shown when the value is unknown).
+template <typename E>
+struct EnumValue {
+  const char* name;
+  E value;
+  const char* meaning = nullptr;
+};
 
 class Properties {
  public:
@@ -85,6 +121,34 @@ class Properties {
   Transform getTransform(const std::string& name, const Transform& def) const;
   ObjectRef getObject(const std::string& name) const;
 
+  // Checked getters: one call per row of a plugin's parameter table. Out of
+  // range values raise (see raise) "must be in [lo, hi], got v" at the
+  // parameter's file:line; `note` (e.g. "-1: no limit", "bins") is added in
+  // parentheses after the range. The default is returned unchecked.
+  /// `hi` of an integer range without an upper bound.
+  static constexpr int64_t Unbounded = std::numeric_limits<int64_t>::max();
+  /// An integer in the closed range [lo, hi] (hi = Unbounded: "must be at least lo").
+  int64_t getInt(const std::string& name, int64_t def, int64_t lo, int64_t hi, const std::string& note = "") const;
+  /// A required integer in [lo, hi].
+  int64_t getIntIn(const std::string& name, int64_t lo, int64_t hi, const std::string& note = "") const;
+  /// A finite float in `range`.
+  float getFloat(const std::string& name, float def, const Range& range, const std::string& note = "") const;
+  /// A required finite float in `range`.
+  float getFloatIn(const std::string& name, const Range& range, const std::string& note = "") const;
+  /// Check a value derived from parameter `name` (e.g. a length given in
+  /// seconds, converted) against `range`, with the same message.
+  void checkRange(const std::string& name, double value, const Range& range, const std::string& note = "") const;
+  /// A string from a fixed set, as the matching enumerator; absent: `def`.
+  /// Unknown values raise `expected "a" (meaning), "b" or "c", got "x"`
+  /// with a "did you mean" hint.
+  template <typename E>
+  E getEnum(const std::string& name, E def, std::initializer_list<EnumValue<E>> values) const {
+    if (!has(name)) return def;
+    std::vector<std::pair<std::string, std::string>> choices;
+    for (const auto& v : values) choices.emplace_back(v.name, v.meaning ? v.meaning : "");
+    return (values.begin() + choiceIndex(name, choices))->value;
+  }
+
   /// All nested objects (named or not) of the given kind, in document order,
   /// marking them as read; `except` names one to leave out (a nested object
   /// of that kind with a role of its own, e.g. a film's "tfilter").
@@ -124,6 +188,8 @@ class Properties {
   const Entry* find(const std::string& name) const;
   const Entry& require(const std::string& name, Type expected) const;
   [[noreturn]] void typeError(const std::string& name, const Entry& e, const char* expected) const;
+  /// Index of the (present) string parameter's value among the choices' names; raises when unknown.
+  size_t choiceIndex(const std::string& name, const std::vector<std::pair<std::string, std::string>>& choices) const;
 
   std::string pluginName_, id_;
   SourceLocation location_;

@@ -25,9 +25,9 @@ TimeGrid readTimeGrid(const Properties& props, const TimeAxisSpelling& spelling)
   const std::string binsName = spelledName(props, spelling.bins, spelling.binsAlias);
   const std::string widthOplName = spelledName(props, spelling.binWidth, spelling.binWidthAlias);
   const std::string startOplName = spelledName(props, spelling.start, spelling.startAlias);
-  int64_t bins = spelling.defaultBins > 0 ? props.getInt(binsName, spelling.defaultBins) : props.getInt(binsName);
-  if (bins < 1 || bins > (1 << 20)) props.raise(binsName, str("must be in [1, 1048576], got ", bins));
-  grid.bins = int(bins);
+  constexpr int64_t kMaxBins = 1 << 20;
+  grid.bins = int(spelling.defaultBins > 0 ? props.getInt(binsName, spelling.defaultBins, 1, kMaxBins)
+                                           : props.getIntIn(binsName, 1, kMaxBins));
   bool opl = props.has(startOplName) || props.has(widthOplName);
   bool seconds = props.has("start_time") || props.has("bin_width_time");
   if (opl && seconds)
@@ -41,13 +41,10 @@ TimeGrid readTimeGrid(const Properties& props, const TimeAxisSpelling& spelling)
   const std::string widthName = seconds ? "bin_width_time" : widthOplName;
   // Seconds become OPL in metres: the scene's units are taken to be metres.
   double scale = seconds ? SpeedOfLight : 1.0;
-  grid.start = double(props.getFloat(startName, 0.0f)) * scale;
+  grid.start = double(props.getFloat(startName, 0.0f, Range::finite())) * scale;
   grid.binWidth = spelling.defaultBinWidth > 0.0 && !seconds
-                      ? double(props.getFloat(widthName, float(spelling.defaultBinWidth)))
-                      : double(props.getFloat(widthName)) * scale;
-  if (!std::isfinite(grid.start)) props.raise(startName, "must be finite");
-  if (!(grid.binWidth > 0.0) || !std::isfinite(grid.binWidth))
-    props.raise(widthName, str("must be positive, got ", props.getFloat(widthName, 0.0f)));
+                      ? double(props.getFloat(widthName, float(spelling.defaultBinWidth), Range::positive()))
+                      : double(props.getFloatIn(widthName, Range::positive())) * scale;
   return grid;
 }
 
@@ -80,13 +77,12 @@ TimeFilter readTimeFilter(const Properties& props, const TimeAxisSpelling& spell
     if (!filter) props.raise("tfilter", "must be an <rfilter>");
     return timeFilterFromPixelFilter(*filter, props);
   }
-  std::string type = props.getString("time_filter", "box");
-  if (type == "box") return TimeFilter::box();
-  if (type != "tent" && type != "gaussian")
-    props.raise("time_filter", str("expected \"box\", \"tent\" or \"gaussian\", got \"", type, "\""));
-  float width = props.getFloat("time_filter_width", type == "tent" ? 1.0f : 0.5f);
-  if (!(width > 0.0f) || !std::isfinite(width)) props.raise("time_filter_width", str("must be positive (bins), got ", width));
-  return type == "tent" ? TimeFilter::tent(width) : TimeFilter::gaussian(width);
+  enum class Kind { Box, Tent, Gaussian };
+  const Kind kind = props.getEnum("time_filter", Kind::Box,
+                                  {{"box", Kind::Box}, {"tent", Kind::Tent}, {"gaussian", Kind::Gaussian}});
+  if (kind == Kind::Box) return TimeFilter::box();
+  float width = props.getFloat("time_filter_width", kind == Kind::Tent ? 1.0f : 0.5f, Range::positive(), "bins");
+  return kind == Kind::Tent ? TimeFilter::tent(width) : TimeFilter::gaussian(width);
 }
 
 /// Where the scene chose the film's time filter (empty when it did not).

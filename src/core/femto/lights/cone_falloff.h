@@ -17,11 +17,8 @@ class ConeFalloff {
   /// beam_width (degrees; default `defaultBeamFraction` x cutoff). A beam
   /// wider than the cutoff is, as in Mitsuba, a warning and the cutoff.
   ConeFalloff(const Properties& props, float defaultCutoffDeg, float defaultBeamFraction) {
-    float cutoffDeg = props.getFloat("cutoff_angle", defaultCutoffDeg);
-    if (!(cutoffDeg > 0.0f && cutoffDeg <= 90.0f))
-      props.raise("cutoff_angle", str("must be in (0, 90] degrees, got ", cutoffDeg));
-    float beamDeg = props.getFloat("beam_width", cutoffDeg * defaultBeamFraction);
-    if (!(beamDeg >= 0.0f)) props.raise("beam_width", str("must be at least 0 degrees, got ", beamDeg));
+    float cutoffDeg = props.getFloat("cutoff_angle", defaultCutoffDeg, Range::leftOpen(0, 90), "degrees");
+    float beamDeg = props.getFloat("beam_width", cutoffDeg * defaultBeamFraction, Range::nonNegative(), "degrees");
     if (beamDeg > cutoffDeg) {
       SourceLocation where = props.location("beam_width");
       logWarn(where.known() ? where.toString() + ": " : "", props.pluginName(), " beam_width ", beamDeg,

@@ -8,9 +8,7 @@
 namespace femto {
 
 Emitter::Emitter(const Properties& props) {
-  samplingWeight_ = props.getFloat("sampling_weight", 1.0f);
-  if (!(samplingWeight_ >= 0.0f) || !std::isfinite(samplingWeight_))
-    props.raise("sampling_weight", str("must be a finite value >= 0, got ", samplingWeight_));
+  samplingWeight_ = props.getFloat("sampling_weight", 1.0f, Range::nonNegative());
   pulse_ = EmissionPulse::fromProperties(props);
   medium_ = endpointMedium(props);
 }

@@ -3,15 +3,6 @@
 #include <femto/render/default_child.h>
 
 namespace femto {
-namespace {
-
-int readDimension(const Properties& props, const std::string& name, int64_t def, int64_t min, int64_t max) {
-  int64_t v = props.getInt(name, def);
-  if (v < min || v > max) props.raise(name, str("must be in [", min, ", ", max, "], got ", v));
-  return int(v);
-}
-
-}  // namespace
 
 Film::Film(const Properties& props) : Film(props, "gaussian") {}
 
@@ -19,11 +10,11 @@ Film::Film(const Properties& props, const char* defaultFilter) : Film(props, def
 
 Film::Film(const Properties& props, const char* defaultFilter, const std::string& reservedFilterName) {
   constexpr int64_t MaxSize = 1 << 16;
-  size_ = Point2i(readDimension(props, "width", 768, 1, MaxSize), readDimension(props, "height", 576, 1, MaxSize));
-  cropOffset_ = Point2i(readDimension(props, "crop_offset_x", 0, 0, size_.x - 1),
-                        readDimension(props, "crop_offset_y", 0, 0, size_.y - 1));
-  cropSize_ = Point2i(readDimension(props, "crop_width", size_.x - cropOffset_.x, 1, size_.x - cropOffset_.x),
-                      readDimension(props, "crop_height", size_.y - cropOffset_.y, 1, size_.y - cropOffset_.y));
+  size_ = Point2i(int(props.getInt("width", 768, 1, MaxSize)), int(props.getInt("height", 576, 1, MaxSize)));
+  cropOffset_ = Point2i(int(props.getInt("crop_offset_x", 0, 0, size_.x - 1)),
+                        int(props.getInt("crop_offset_y", 0, 0, size_.y - 1)));
+  cropSize_ = Point2i(int(props.getInt("crop_width", size_.x - cropOffset_.x, 1, size_.x - cropOffset_.x)),
+                      int(props.getInt("crop_height", size_.y - cropOffset_.y, 1, size_.y - cropOffset_.y)));
   filter_ = nestedOrDefault<ReconstructionFilter>(props, ObjectKind::ReconstructionFilter, defaultFilter,
                                                   reservedFilterName);
 }

@@ -31,16 +31,13 @@ MediumCoefficients readMediumCoefficients(const Properties& props, bool sigmaTIs
     requireValid("albedo", c.albedo);
     if (c.albedo.maxValue() > 1.0f) props.raise("albedo", str("must lie in [0, 1], got ", c.albedo));
   }
-  c.scale = props.getFloat("scale", 1.0f);
-  if (!(c.scale >= 0.0f) || !std::isfinite(c.scale)) props.raise("scale", str("must be finite and >= 0, got ", c.scale));
+  c.scale = props.getFloat("scale", 1.0f, Range::nonNegative());
   return c;
 }
 
 Medium::Medium(const Properties& props)
     : phase_(nestedOrDefault<PhaseFunction>(props, ObjectKind::PhaseFunction, "isotropic")),
-      eta_(props.getFloat("eta", 1.0f)) {
-  if (!(eta_ >= 1.0f) || !std::isfinite(eta_))
-    props.raise("eta", str("a refractive index must be finite and at least 1, got ", eta_));
+      eta_(props.getFloat("eta", 1.0f, Range::atLeast(1), "a refractive index")) {
 }
 
 Medium::~Medium() = default;

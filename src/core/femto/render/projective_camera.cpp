@@ -32,15 +32,12 @@ float parseMillimetres(const Properties& props, const std::string& name, const s
 }  // namespace
 
 ProjectiveCamera::ProjectiveCamera(const Properties& props, float defaultFocus) : Sensor(props) {
-  nearClip_ = props.getFloat("near_clip", 0.01f);
+  nearClip_ = props.getFloat("near_clip", 0.01f, Range::positive());
   farClip_ = props.getFloat("far_clip", 10000.0f);
-  if (!(nearClip_ > 0.0f)) props.raise("near_clip", str("must be positive, got ", nearClip_));
   if (!(farClip_ > nearClip_)) props.raise("far_clip", str("must be larger than near_clip (", nearClip_, ")"));
-  focusDistance_ = props.getFloat("focus_distance", defaultFocus < 0.0f ? farClip_ : defaultFocus);
-  if (!(focusDistance_ > 0.0f) || !std::isfinite(focusDistance_)) props.raise("focus_distance", "must be positive");
-  offset_ = Point2f(props.getFloat("principal_point_offset_x", 0.0f), props.getFloat("principal_point_offset_y", 0.0f));
-  if (!std::isfinite(offset_.x)) props.raise("principal_point_offset_x", "must be finite");
-  if (!std::isfinite(offset_.y)) props.raise("principal_point_offset_y", "must be finite");
+  focusDistance_ = props.getFloat("focus_distance", defaultFocus < 0.0f ? farClip_ : defaultFocus, Range::positive());
+  offset_.x = props.getFloat("principal_point_offset_x", 0.0f, Range::finite());
+  offset_.y = props.getFloat("principal_point_offset_y", 0.0f, Range::finite());
   if (props.has("srf")) props.raise("srf", "spectral sensor response functions are not supported (femto renders RGB)");
 
   const Point2i size = film_->size();
@@ -49,8 +46,7 @@ ProjectiveCamera::ProjectiveCamera(const Properties& props, float defaultFocus) 
   std::string axis;
   if (props.has("fov")) {
     if (props.has("focal_length")) props.raise("focal_length", "give either \"fov\" or \"focal_length\", not both");
-    fov_ = props.getFloat("fov");
-    if (!(fov_ > 0.0f && fov_ < 180.0f)) props.raise("fov", str("must be in (0, 180) degrees, got ", fov_));
+    fov_ = props.getFloatIn("fov", Range::open(0, 180), "degrees");
     tanHalf = std::tan(degToRad(fov_) * 0.5f);
     axis = lowercase(props.getString("fov_axis", "x"));
   } else {

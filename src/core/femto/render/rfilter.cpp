@@ -17,9 +17,7 @@ void ReconstructionFilter::buildTable() {
 }
 
 void ReconstructionFilter::initRadiusAndTable(const Properties& props, float def) {
-  float r = props.getFloat("radius", def);
-  if (!(r > 0.0f) || !std::isfinite(r)) props.raise("radius", str("must be positive, got ", r));
-  setRadius(r);
+  setRadius(props.getFloat("radius", def, Range::positive()));
   buildTable();
 }
 

@@ -3,14 +3,10 @@
 namespace femto {
 
 Sampler::Sampler(const Properties& props) {
-  int64_t n = props.getInt("sample_count", 4);
-  if (n <= 0 || n > int64_t(UINT32_MAX)) props.raise("sample_count", str("must be a positive integer, got ", n));
-  sampleCount_ = uint32_t(n);
+  sampleCount_ = uint32_t(props.getInt("sample_count", 4, 1, int64_t(UINT32_MAX)));
   // Mitsuba 3's per-scene seed of the sampler (mi.render's seed argument
   // plays the role of femto's --seed; the two are combined).
-  int64_t seed = props.getInt("seed", 0);
-  if (seed < 0) props.raise("seed", str("must be at least 0, got ", seed));
-  sceneSeed_ = uint64_t(seed);
+  sceneSeed_ = uint64_t(props.getInt("seed", 0, 0, Properties::Unbounded));
 }
 
 namespace {

@@ -22,16 +22,16 @@ Color3f TransientIntegrator::steadyRadiance(const Scene& scene, const Ray& ray, 
 }
 
 void TransientIntegrator::readTemporalFilter(const Properties& props) {
-  std::string type = props.getString("temporal_filter", "");
+  enum class Kind { Film, Box, Gaussian };
+  const Kind kind = props.getEnum("temporal_filter", Kind::Film,
+                                  {{"box", Kind::Box}, {"gaussian", Kind::Gaussian}, {"", Kind::Film, "the film's own"}});
   float stddev = props.getFloat("gaussian_stddev", 2.0f);
-  if (type.empty()) return;
-  if (type == "box") {
+  if (kind == Kind::Film) return;
+  if (kind == Kind::Box) {
     requestedTimeFilter_ = TimeFilter::box();
-  } else if (type == "gaussian") {
-    if (!(stddev > 0.0f) || !std::isfinite(stddev)) props.raise("gaussian_stddev", str("must be positive (bins), got ", stddev));
-    requestedTimeFilter_ = TimeFilter::gaussian(stddev);
   } else {
-    props.raise("temporal_filter", str("expected \"box\", \"gaussian\" or \"\" (the film's own), got \"", type, "\""));
+    props.checkRange("gaussian_stddev", stddev, Range::positive(), "bins");
+    requestedTimeFilter_ = TimeFilter::gaussian(stddev);
   }
   requestedTimeFilterAt_ = props.location("temporal_filter");
 }

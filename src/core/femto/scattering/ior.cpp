@@ -60,9 +60,7 @@ float iorFromProperties(const Properties& props, const std::string& name, float 
     props.raise(name, str("unknown material \"", value, "\"", didYouMean(value, knownIORNames()),
                           "; give a number or one of the named materials"));
   }
-  float ior = props.getFloat(name);
-  if (!(ior > 0.0f)) props.raise(name, str("an index of refraction must be positive, got ", ior));
-  return ior;
+  return props.getFloatIn(name, Range::positive(), "an index of refraction");
 }
 
 }  // namespace femto

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include <femto/core/properties.h>
-#include <femto/core/spelling.h>
 #include <femto/math/constants.h>
 
 namespace femto {
@@ -72,19 +71,10 @@ MicrofacetDistribution::MicrofacetDistribution(MicrofacetType type, float alphaU
       sampleVisible_(sampleVisible) {}
 
 MicrofacetDistribution MicrofacetDistribution::fromProperties(const Properties& props, bool allowAnisotropic) {
-  MicrofacetType type = MicrofacetType::Beckmann;
-  std::string name = props.getString("distribution", "beckmann");
-  if (name == "ggx") type = MicrofacetType::GGX;
-  else if (name != "beckmann")
-    props.raise("distribution", str("unknown microfacet distribution \"", name, "\"",
-                                    didYouMean(name, {"beckmann", "ggx"}), "; expected \"beckmann\" or \"ggx\""));
+  const MicrofacetType type = props.getEnum(
+      "distribution", MicrofacetType::Beckmann, {{"beckmann", MicrofacetType::Beckmann}, {"ggx", MicrofacetType::GGX}});
 
-  auto readAlpha = [&](const std::string& key) {
-    float alpha = props.getFloat(key, 0.1f);
-    if (!(alpha >= 0.0f) || !std::isfinite(alpha))
-      props.raise(key, str("a roughness must be a finite number >= 0, got ", alpha));
-    return alpha;
-  };
+  auto readAlpha = [&](const std::string& key) { return props.getFloat(key, 0.1f, Range::nonNegative(), "a roughness"); };
   float alphaU = 0.1f, alphaV = 0.1f;
   bool anisotropic = allowAnisotropic && (props.has("alpha_u") || props.has("alpha_v"));
   if (anisotropic) {

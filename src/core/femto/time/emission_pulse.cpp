@@ -44,7 +44,7 @@ double readLength(const Properties& props, const std::string& name) {
   if (opl && time) props.raise(seconds, str("give either ", name, " (OPL) or ", seconds, " (seconds), not both"));
   if (!opl && !time) return std::numeric_limits<double>::quiet_NaN();
   double value = opl ? double(props.getFloat(name)) : double(props.getFloat(seconds)) * SpeedOfLight;
-  if (!std::isfinite(value)) props.raise(opl ? name : seconds, "must be finite");
+  props.checkRange(opl ? name : seconds, value, Range::finite());
   return value;
 }
 
@@ -54,7 +54,7 @@ std::string givenName(const Properties& props, const std::string& name) {
 }
 
 double requirePositive(const Properties& props, const std::string& name, double value) {
-  if (!(value > 0.0)) props.raise(givenName(props, name), str("must be positive, got ", value));
+  props.checkRange(givenName(props, name), value, Range::positive());
   return value;
 }
 

@@ -5,10 +5,8 @@
 namespace femto {
 
 ScatteringDelay::ScatteringDelay(const Properties& props)
-    : delay_(props.getFloat("delay", 0.0f)), lifetime_(props.getFloat("lifetime", 0.0f)) {
-  if (!(delay_ >= 0.0) || !std::isfinite(delay_)) props.raise("delay", str("must be finite and >= 0, got ", delay_));
-  if (!(lifetime_ >= 0.0) || !std::isfinite(lifetime_))
-    props.raise("lifetime", str("must be finite and >= 0, got ", lifetime_));
+    : delay_(props.getFloat("delay", 0.0f, Range::nonNegative())),
+      lifetime_(props.getFloat("lifetime", 0.0f, Range::nonNegative())) {
 }
 
 double ScatteringDelay::sample(float u) const {

@@ -253,10 +253,15 @@ TEST(TransientBeamsRender, BadParametersNameTheFileAndLine) {
       EXPECT_NE(message.find("<media test>:"), std::string::npos) << message;
     }
   };
-  expectError(R"(<string name="store" value="double"/>)", "\"store\"");
-  expectError(R"(<float name="alpha" value="1.5"/>)", "must lie in (0, 1]");
-  expectError(R"(<float name="radius" value="-1"/>)", "finite radius > 0");
-  expectError(R"(<integer name="passes" value="0"/>)", "\"passes\"");
+  expectError(R"(<string name="store" value="singel"/>)",
+              "\"store\" of \"transient_beams\": expected \"all\" (every scattering order) or \"single\" (single "
+              "scattering), got \"singel\" (did you mean \"single\"?)");
+  expectError(R"(<float name="alpha" value="1.5"/>)",
+              "parameter \"alpha\" of \"transient_beams\": must be in (0, 1], got 1.5");
+  expectError(R"(<float name="radius" value="-1"/>)",
+              "must be at least 0 and finite (a radius in scene units; 0: derived from the scene), got -1");
+  expectError(R"(<integer name="passes" value="0"/>)",
+              "\"passes\" of \"transient_beams\": must be in [1, 1000000], got 0");
   expectError(R"(<integer name="photon_count" value="0"/>)", "\"photon_count\"");
   expectError(R"(<string name="volume_estimator" value="rays"/>)", "\"volume_estimator\"");
 }
