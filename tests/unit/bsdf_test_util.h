@@ -30,6 +30,11 @@ inline std::shared_ptr<BSDF> makeBSDF(const std::string& name, const std::functi
   return createPlugin<BSDF>(ObjectKind::BSDF, props);
 }
 
+/// The Lambertian reflector of albedo `rho`.
+inline std::shared_ptr<BSDF> makeDiffuse(const Color3f& rho) {
+  return makeBSDF("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
+}
+
 struct AlbedoEstimate {
   Color3f mean, standardError;
 };

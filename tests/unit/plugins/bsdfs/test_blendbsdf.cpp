@@ -20,10 +20,6 @@ namespace {
 constexpr int kChiSquareTests = 3;
 const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
 
-std::shared_ptr<BSDF> diffuse(const Color3f& rho) {
-  return makeBSDF("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
-}
-
 std::shared_ptr<BSDF> phong(float exponent = 20.0f) {
   return makeBSDF("phong", [&](Properties& p) {
     p.setColor("diffuse_reflectance", Color3f(0.3f, 0.2f, 0.1f));
@@ -47,7 +43,7 @@ const std::vector<Vec3f> kDirections = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0
 TEST(BlendBSDF, TwoDiffuseBSDFsHaveTheBlendedAlbedo) {
   const Color3f rho0(0.8f, 0.4f, 0.1f), rho1(0.1f, 0.5f, 0.9f);
   const float t = 0.3f;
-  auto bsdf = blend(diffuse(rho0), diffuse(rho1), t);
+  auto bsdf = blend(makeDiffuse(rho0), makeDiffuse(rho1), t);
   EXPECT_EQ(bsdf->flags(), uint32_t(BSDFFlags::DiffuseReflection));
   const Color3f expected = rho0 * (1 - t) + rho1 * t;
   for (const Vec3f& d : kDirections) {
@@ -65,7 +61,7 @@ TEST(BlendBSDF, TwoDiffuseBSDFsHaveTheBlendedAlbedo) {
 }
 
 TEST(BlendBSDF, WeightIsTheWeightOfTheSecondBSDF) {
-  auto first = diffuse(Color3f(0.5f)), second = phong();
+  auto first = makeDiffuse(Color3f(0.5f)), second = phong();
   SurfaceInteraction si = localInteraction({0.3f, 0.1f, 0.9f});
   const Vec3f wo = normalize(Vec3f(-0.3f, -0.1f, 0.9f));  // near the mirror direction: phong's lobe
   ASSERT_GT(std::abs(first->eval(si, wo).r - second->eval(si, wo).r), 0.1f);
@@ -87,7 +83,7 @@ TEST(BlendBSDF, DeltaComponentsKeepTheirShare) {
   // A perfect mirror (first) blended with a white diffuse reflector: albedo (1 - t) + t.
   auto mirror = makeBSDF("conductor", [](Properties& p) { p.setString("material", "none"); });
   const float t = 0.4f;
-  auto bsdf = blend(mirror, diffuse(Color3f(0.5f)), t);
+  auto bsdf = blend(mirror, makeDiffuse(Color3f(0.5f)), t);
   EXPECT_EQ(bsdf->flags(), uint32_t(BSDFFlags::DeltaReflection | BSDFFlags::DiffuseReflection));
   SurfaceInteraction si = localInteraction({0.4f, 0.2f, 0.7f});
   expectAlbedoNear(albedo(*bsdf, si, 40000), Color3f((1 - t) * 1.0f + t * 0.5f));
@@ -115,7 +111,7 @@ TEST(BlendBSDF, SamplesMatchEvalAndPdf) {
 }
 
 TEST(BlendBSDF, IsReciprocal) {
-  auto bsdf = blend(diffuse(Color3f(0.7f)), phong(8.0f), 0.6f);
+  auto bsdf = blend(makeDiffuse(Color3f(0.7f)), phong(8.0f), 0.6f);
   for (const Vec3f& a : kDirections)
     for (const Vec3f& b : kDirections) {
       const Vec3f wi = normalize(a), wo = normalize(Vec3f(-b.x, b.y, b.z));
@@ -130,7 +126,7 @@ TEST(BlendBSDF, TextureWeightVariesOverTheSurface) {
   checker.setColor("color0", Color3f(0.0f));
   checker.setColor("color1", Color3f(1.0f));
   auto weight = createPlugin<Texture>(ObjectKind::Texture, checker);
-  auto first = diffuse(Color3f(0.2f)), second = diffuse(Color3f(0.8f));
+  auto first = makeDiffuse(Color3f(0.2f)), second = makeDiffuse(Color3f(0.8f));
   auto bsdf = makeBSDF("blendbsdf", [&](Properties& p) {
     p.setObject("weight", weight);
     p.setObject("_arg_0", first);
@@ -147,14 +143,14 @@ TEST(BlendBSDF, TextureWeightVariesOverTheSurface) {
 }
 
 TEST(BlendBSDF, ComposesWithTwoSidedAndMaskAndKeepsTheDelay) {
-  auto inner = blend(diffuse(Color3f(0.2f)), phong(), 0.5f);
+  auto inner = blend(makeDiffuse(Color3f(0.2f)), phong(), 0.5f);
   auto both = makeBSDF("twosided", [&](Properties& p) { p.setObject("_arg_0", inner); });
   const Vec3f wi(0.3f, 0.2f, 0.8f), wo(-0.2f, -0.3f, 0.7f);
   const Vec3f wiBack(wi.x, wi.y, -wi.z), woBack(wo.x, wo.y, -wo.z);
   EXPECT_NEAR(both->eval(localInteraction(wiBack), woBack).r, inner->eval(localInteraction(wi), wo).r, 1e-6f);
   checkSampleEvalPdf(*both, localInteraction(wiBack), 2000);
   // A blend may hold a transmitting BSDF, and be masked.
-  auto translucent = blend(diffuse(Color3f(0.5f)), makeBSDF("difftrans"), 0.5f);
+  auto translucent = blend(makeDiffuse(Color3f(0.5f)), makeBSDF("difftrans"), 0.5f);
   EXPECT_EQ(translucent->flags(), uint32_t(BSDFFlags::DiffuseReflection | BSDFFlags::DiffuseTransmission));
   auto masked = makeBSDF("mask", [&](Properties& p) {
     p.setFloat("opacity", 0.5f);
@@ -165,7 +161,7 @@ TEST(BlendBSDF, ComposesWithTwoSidedAndMaskAndKeepsTheDelay) {
   expectAlbedoNear(albedo(*masked, si, 40000), Color3f(0.5f + 0.5f * 0.5f));
   checkSampleEvalPdf(*masked, si, 2000);
   auto delayed = makeBSDF("blendbsdf", [&](Properties& p) {
-    p.setObject("_arg_0", diffuse(Color3f(0.5f)));
+    p.setObject("_arg_0", makeDiffuse(Color3f(0.5f)));
     p.setObject("_arg_1", phong());
     p.setFloat("delay", 0.25);
   });
@@ -176,14 +172,14 @@ TEST(BlendBSDF, ComposesWithTwoSidedAndMaskAndKeepsTheDelay) {
 TEST(BlendBSDF, BadParametersAreReportedWithFileAndLine) {
   const SourceLocation where{"scene.xml", 12};
   std::string message = errorMessageOf(
-      [&] { makeBSDF("blendbsdf", [&](Properties& p) { p.setObject("_arg_0", diffuse(Color3f(0.5f))); }); });
+      [&] { makeBSDF("blendbsdf", [&](Properties& p) { p.setObject("_arg_0", makeDiffuse(Color3f(0.5f))); }); });
   EXPECT_NE(message.find("scene.xml:3"), std::string::npos) << message;
   EXPECT_NE(message.find("exactly two nested <bsdf>, got 1"), std::string::npos) << message;
   message = errorMessageOf([&] {
     makeBSDF("blendbsdf", [&](Properties& p) {
       p.setFloat("weight", 1.5f, where);
-      p.setObject("_arg_0", diffuse(Color3f(0.5f)));
-      p.setObject("_arg_1", diffuse(Color3f(0.5f)));
+      p.setObject("_arg_0", makeDiffuse(Color3f(0.5f)));
+      p.setObject("_arg_1", makeDiffuse(Color3f(0.5f)));
     });
   });
   EXPECT_NE(message.find("scene.xml:12"), std::string::npos) << message;

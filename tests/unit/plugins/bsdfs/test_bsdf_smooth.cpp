@@ -25,10 +25,6 @@ std::shared_ptr<BSDF> make(const std::string& name, const std::function<void(Pro
   return makeBSDF(name, setup);
 }
 
-std::shared_ptr<BSDF> makeDiffuse(const Color3f& rho) {
-  return make("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
-}
-
 std::shared_ptr<BSDF> makePlastic(const Color3f& rho, bool nonlinear = false, float ior = 1.49f) {
   return make("plastic", [&](Properties& p) {
     p.setColor("diffuse_reflectance", rho);

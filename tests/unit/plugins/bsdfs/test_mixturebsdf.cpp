@@ -20,10 +20,6 @@ namespace {
 constexpr int kChiSquareTests = 2;
 const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
 
-std::shared_ptr<BSDF> diffuse(const Color3f& rho) {
-  return makeBSDF("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
-}
-
 std::shared_ptr<BSDF> mixture(const std::string& weights, const std::vector<std::shared_ptr<BSDF>>& bsdfs,
                               const std::function<void(Properties&)>& extra = {}) {
   return makeBSDF("mixturebsdf", [&](Properties& p) {
@@ -37,7 +33,7 @@ std::shared_ptr<BSDF> mixture(const std::string& weights, const std::vector<std:
 
 TEST(MixtureBSDF, AlbedoIsTheWeightedSumAndWeightsBelowOneAbsorb) {
   const Color3f rho0(0.9f, 0.1f, 0.4f), rho1(0.2f, 0.8f, 0.4f), rho2(0.5f);
-  auto bsdf = mixture("0.2, 0.3;0.1", {diffuse(rho0), diffuse(rho1), diffuse(rho2)});
+  auto bsdf = mixture("0.2, 0.3;0.1", {makeDiffuse(rho0), makeDiffuse(rho1), makeDiffuse(rho2)});
   const Color3f expected = rho0 * 0.2f + rho1 * 0.3f + rho2 * 0.1f;
   for (const Vec3f& d : {Vec3f(0, 0, 1), Vec3f(0.6f, 0.3f, 0.4f)}) {
     AlbedoEstimate e = albedo(*bsdf, localInteraction(d), 4000);
@@ -52,14 +48,14 @@ TEST(MixtureBSDF, AlbedoIsTheWeightedSumAndWeightsBelowOneAbsorb) {
 TEST(MixtureBSDF, WeightsAboveOneAreDividedByTheirSumUnlessTurnedOff) {
   const Color3f rho0(0.6f), rho1(0.8f);
   SurfaceInteraction si = localInteraction({0.2f, 0.1f, 0.9f});
-  auto scaled = mixture("1 1", {diffuse(rho0), diffuse(rho1)});
+  auto scaled = mixture("1 1", {makeDiffuse(rho0), makeDiffuse(rho1)});
   EXPECT_NE(scaled->toString().find("weights={0.5, 0.5}"), std::string::npos) << scaled->toString();
   expectAlbedoNear(albedo(*scaled, si, 4000), (rho0 + rho1) * 0.5f);
-  auto kept = mixture("1 1", {diffuse(rho0), diffuse(rho1)},
+  auto kept = mixture("1 1", {makeDiffuse(rho0), makeDiffuse(rho1)},
                       [](Properties& p) { p.setBool("ensure_energy_conservation", false); });
   expectAlbedoNear(albedo(*kept, si, 4000), rho0 + rho1);  // as asked: not energy conserving
   // A sum of exactly 1 is left alone.
-  EXPECT_NE(mixture("0.25,0.75", {diffuse(rho0), diffuse(rho1)})->toString().find("weights={0.25, 0.75}"),
+  EXPECT_NE(mixture("0.25,0.75", {makeDiffuse(rho0), makeDiffuse(rho1)})->toString().find("weights={0.25, 0.75}"),
             std::string::npos);
 }
 
@@ -70,7 +66,7 @@ TEST(MixtureBSDF, SamplesMatchEvalAndPdfAndDeltaTermsKeepTheirShare) {
     p.setColor("diffuse_reflectance", Color3f(0.2f));
     p.setFloat("exponent", 10.0f);
   });
-  auto bsdf = mixture("0.45, 0.15, 0.3", {mirror, diffuse(Color3f(0.5f)), phong});
+  auto bsdf = mixture("0.45, 0.15, 0.3", {mirror, makeDiffuse(Color3f(0.5f)), phong});
   EXPECT_EQ(bsdf->flags(),
             uint32_t(BSDFFlags::DeltaReflection | BSDFFlags::DiffuseReflection | BSDFFlags::GlossyReflection));
   SurfaceInteraction normal = localInteraction({0, 0, 1});
@@ -91,13 +87,13 @@ TEST(MixtureBSDF, SamplesMatchEvalAndPdfAndDeltaTermsKeepTheirShare) {
 
 TEST(MixtureBSDF, IsReciprocal) {
   auto phong = makeBSDF("phong");
-  auto bsdf = mixture("0.5, 0.5", {diffuse(Color3f(0.3f)), phong});
+  auto bsdf = mixture("0.5, 0.5", {makeDiffuse(Color3f(0.3f)), phong});
   const Vec3f wi = normalize(Vec3f(0.3f, 0.2f, 0.7f)), wo = normalize(Vec3f(-0.25f, -0.2f, 0.8f));
   EXPECT_NEAR(bsdf->eval(localInteraction(wi), wo).r / wo.z, bsdf->eval(localInteraction(wo), wi).r / wi.z, 1e-5f);
 }
 
 TEST(MixtureBSDF, BadParametersAreReportedWithFileAndLine) {
-  auto d = diffuse(Color3f(0.5f));
+  auto d = makeDiffuse(Color3f(0.5f));
   auto expectError = [](const std::function<void()>& build, const std::string& where, const std::string& words) {
     std::string message = errorMessageOf(build);
     EXPECT_NE(message.find(where), std::string::npos) << message;
