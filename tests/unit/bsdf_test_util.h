@@ -10,6 +10,7 @@
 #include <femto/render/bsdf.h>
 
 #include "chi2.h"
+#include "plugin_util.h"
 
 namespace femto::test {
 
@@ -21,9 +22,33 @@ inline SurfaceInteraction localInteraction(const Vec3f& wi) {
   return si;
 }
 
+/// A BSDF plugin built from `setup`'s parameters, as if written at scene.xml:3.
+inline std::shared_ptr<BSDF> makeBSDF(const std::string& name, const std::function<void(Properties&)>& setup = {}) {
+  Properties props(name);
+  props.setLocation(SourceLocation{"scene.xml", 3});
+  if (setup) setup(props);
+  return createPlugin<BSDF>(ObjectKind::BSDF, props);
+}
+
+/// The Lambertian reflector of albedo `rho`.
+inline std::shared_ptr<BSDF> makeDiffuse(const Color3f& rho) {
+  return makeBSDF("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
+}
+
 struct AlbedoEstimate {
   Color3f mean, standardError;
 };
+
+/// Albedo must not exceed `bound` beyond 5 standard errors and a float allowance.
+inline void expectAlbedoAtMost(const AlbedoEstimate& e, float bound) {
+  for (int c = 0; c < 3; ++c) EXPECT_LE(e.mean[c], bound + 5.0f * e.standardError[c] + 1e-5f) << "channel " << c;
+}
+
+inline void expectAlbedoNear(const AlbedoEstimate& e, const Color3f& expected, float relativeSlack = 0.0f) {
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(e.mean[c], expected[c], 5.0f * e.standardError[c] + relativeSlack * expected[c] + 1e-5f)
+        << "channel " << c << ", standard error " << e.standardError[c];
+}
 
 /// Albedo rho(wi) = integral of f(wi, wo) |cos wo| dwo over the sphere,
 /// estimated as the mean sample weight (failed samples count as zero).

@@ -177,6 +177,18 @@ TEST(LoaderDialects, Mitsuba3DifferentiableIntegratorsRenderAsTheirPlainCounterp
   EXPECT_NE(vol->integrator().toString().find("TransientPathIntegrator[max_depth=6"), std::string::npos);
 }
 
+TEST(LoaderDialects, BumpAndNormalMapsAreRefusedNamingTheTypeLineAndWhy) {
+  for (const char* type : {"bumpmap", "normalmap"}) {
+    std::string xml = std::string("<bsdf version=\"3.0.0\" type=\"") + type + "\">\n  <bsdf type=\"diffuse\"/>\n</bsdf>";
+    LoadOptions strict;
+    strict.strict = true;
+    std::string message = loadertest::errorOf([&] { loadObjectFromString(xml, ".", strict, "dialect.xml"); });
+    EXPECT_EQ(message.rfind("dialect.xml:1: ", 0), 0u) << message;
+    EXPECT_NE(message.find(std::string("plugin \"") + type + "\""), std::string::npos) << message;
+    EXPECT_NE(message.find("perturb the shading frame"), std::string::npos) << message;
+  }
+}
+
 TEST(LoaderDialects, IntegratorsOfOtherRenderersFailNamingTheTypeLineAndWhatToUse) {
   for (const char* type : {"bdpt", "guided_path", "sppm"}) {
     std::string xml = std::string("<scene version=\"3.0.0\">\n  <integrator type=\"") + type + "\"/>\n</scene>";

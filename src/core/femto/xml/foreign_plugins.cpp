@@ -8,9 +8,19 @@ namespace {
 constexpr const char* kUseSurfaceOrMedia =
     "use path (surfaces), transient_path (media, time-resolved) or transient_beams (media, photon beams)";
 
+/// Mitsuba's shading-normal wrappers: femto refuses them rather than render
+/// the nested BSDF with an unperturbed normal, which would look plausible but
+/// wrong.
+std::string adviceForForeignBSDF(const std::string& name) {
+  if (name != "bumpmap" && name != "normalmap") return "";
+  return " (bump and normal mapping perturb the shading frame, which femto's BSDFs do not support yet; remove the "
+         "wrapper to render the nested BSDF on the unperturbed surface)";
+}
+
 }  // namespace
 
 std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
+  if (kind == ObjectKind::BSDF) return adviceForForeignBSDF(name);
   if (kind != ObjectKind::Integrator) return "";
   static const std::map<std::string, std::string> advice = {
       {"bdpt", "bidirectional path tracing (Mitsuba's bdpt) is not part of femto"},

@@ -22,14 +22,7 @@ const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
 const SourceLocation kWhere{"scene.xml", 12};
 
 std::shared_ptr<BSDF> make(const std::string& name, const std::function<void(Properties&)>& setup = {}) {
-  Properties props(name);
-  props.setLocation(SourceLocation{"scene.xml", 3});
-  if (setup) setup(props);
-  return createPlugin<BSDF>(ObjectKind::BSDF, props);
-}
-
-std::shared_ptr<BSDF> makeDiffuse(const Color3f& rho) {
-  return make("diffuse", [&](Properties& p) { p.setColor("reflectance", rho); });
+  return makeBSDF(name, setup);
 }
 
 std::shared_ptr<BSDF> makePlastic(const Color3f& rho, bool nonlinear = false, float ior = 1.49f) {
@@ -38,17 +31,6 @@ std::shared_ptr<BSDF> makePlastic(const Color3f& rho, bool nonlinear = false, fl
     p.setBool("nonlinear", nonlinear);
     p.setFloat("int_ior", ior);
   });
-}
-
-/// Albedo must not exceed `bound` beyond 5 standard errors and a float allowance.
-void expectAlbedoAtMost(const AlbedoEstimate& e, float bound) {
-  for (int c = 0; c < 3; ++c) EXPECT_LE(e.mean[c], bound + 5.0f * e.standardError[c] + 1e-5f) << "channel " << c;
-}
-
-void expectAlbedoNear(const AlbedoEstimate& e, const Color3f& expected, float relativeSlack = 0.0f) {
-  for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(e.mean[c], expected[c], 5.0f * e.standardError[c] + relativeSlack * expected[c] + 1e-5f)
-        << "channel " << c << ", standard error " << e.standardError[c];
 }
 
 const std::vector<Vec3f> kDirections = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0.1f, 0.2f}, {-0.5f, 0.5f, 0.05f}};
