@@ -37,7 +37,7 @@ namespace {
 
 /// Plugins the project plans but has not necessarily written yet. A scene
 /// that fails only because one of these is missing is pending, not broken.
-const std::set<std::string> kPlannedPlugins = {
+const std::set<std::string> PlannedPlugins = {
     "homogeneous", "heterogeneous", "volpath", "volpathmis", "transient_path", "transient_hdr_film",
     "transient_volpath", "roughplastic", "disk", "isotropic", "hg", "constvolume", "gridvolume", "moment"};
 
@@ -50,7 +50,7 @@ struct KnownIssue {
   const char* reason;
 };
 // None at present: every scene of the corpus renders.
-const std::vector<KnownIssue> kKnownIssues = {};
+const std::vector<KnownIssue> KnownIssues = {};
 
 struct SceneEntry {
   std::string name;  // folder of the corpus
@@ -93,13 +93,13 @@ TEST_P(SharedScene, LoadsStrictAndRendersAFinitePreview) {
     if (std::regex_search(r.output, m, unknownPlugin)) {
       std::string plugin = m[2];
       bool built = fs::exists(fs::path(FEMTO_PLUGIN_DIR) / (plugin + ".so"));
-      if (kPlannedPlugins.count(plugin) && !built) {
+      if (PlannedPlugins.count(plugin) && !built) {
         std::printf("[ PENDING  ] %s needs the <%s> plugin \"%s\", which is not written yet\n", scene.name.c_str(),
                     std::string(m[1]).c_str(), plugin.c_str());
         GTEST_SKIP() << scene.name << " is pending: it needs plugin \"" << plugin << "\" (not written yet)";
       }
     }
-    for (const KnownIssue& issue : kKnownIssues)
+    for (const KnownIssue& issue : KnownIssues)
       if (scene.name == issue.scene && r.output.find(issue.messagePart) != std::string::npos) {
         std::printf("[ KNOWN    ] %s: %s\n", scene.name.c_str(), issue.reason);
         GTEST_SKIP() << scene.name << " has a known issue: " << issue.reason;

@@ -104,6 +104,6 @@ inline void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, 
 /// surfaces) the band within a radius of an edge is a few percent of what the
 /// camera sees and loses at most half of its indirect light there: allow 2 %
 /// of the value on top of the noise.
-constexpr double kKernelBias = 0.02;
+constexpr double KernelBias = 0.02;
 
 }  // namespace femto::test

@@ -11,9 +11,9 @@ namespace {
 /// Default radii as fractions of the scene's bounding-box diagonal: small
 /// enough that the kernel blur stays below a pixel's footprint in typical
 /// views, large enough for ~1e5 photons to give a usable first pass.
-constexpr float kBeamRadiusFraction = 0.005f, kSurfaceRadiusFraction = 0.01f;
+constexpr float BeamRadiusFraction = 0.005f, SurfaceRadiusFraction = 0.01f;
 /// Upper bound of the derived beam radius, as a fraction of the diagonal.
-constexpr float kMaxBeamRadiusFraction = 0.01f;
+constexpr float MaxBeamRadiusFraction = 0.01f;
 
 /// Product over passes 0..pass-1 of (i + alpha) / (i + 1).
 double reduction(float alpha, int pass) {
@@ -27,13 +27,13 @@ double reduction(float alpha, int pass) {
 BeamSettings BeamSettings::parse(const Properties& props) {
   BeamSettings s;
   s.location = props.location();
-  constexpr int64_t kMaxPhotons = int64_t(1) << 32;
+  constexpr int64_t MaxPhotons = int64_t(1) << 32;
   s.passes = int(props.getInt("passes", 1, 1, 1000000));
-  s.photonCount = props.getInt("photon_count", s.photonCount, 1, kMaxPhotons, "photons per pass");
+  s.photonCount = props.getInt("photon_count", s.photonCount, 1, MaxPhotons, "photons per pass");
   // Beams cost far more per photon than surface photons (a BVH over beam
   // pieces, queried by every camera segment), and an evenly lit medium needs
   // fewer of them: by default only the first 10000 photons leave beams.
-  s.beamPhotonCount = props.getInt("beam_photon_count", s.beamPhotonCount, 0, kMaxPhotons, "0: all photons leave beams");
+  s.beamPhotonCount = props.getInt("beam_photon_count", s.beamPhotonCount, 0, MaxPhotons, "0: all photons leave beams");
   // 0 (as when absent) asks for the default derived from the scene (resolved()).
   const char* radiusNote = "a radius in scene units; 0: derived from the scene";
   s.radius = props.getFloat("radius", 0.0f, Range::nonNegative(), radiusNote);
@@ -60,7 +60,7 @@ BeamSettings BeamSettings::resolved(const BoundingBox3f& sceneBounds) const {
   if (!(diagonal > 0.0f) || !std::isfinite(diagonal))
     throw Error(location, "transient_beams: the scene has no finite extent to derive the kernel radii from; give "
                           "\"radius\" and \"surface_radius\"");
-  if (!(s.surfaceRadius > 0.0f)) s.surfaceRadius = kSurfaceRadiusFraction * diagonal;
+  if (!(s.surfaceRadius > 0.0f)) s.surfaceRadius = SurfaceRadiusFraction * diagonal;
   return s;
 }
 
@@ -80,13 +80,13 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   const double area = std::cbrt(volume * volume);  // V^(2/3)
   double r = 0.0;
   if (volumeEstimator == VolumeEstimator::Points)
-    r = volume > 0.0 && !beams.empty() ? std::sqrt(kTargetPairHits * area / (Pi * double(beams.size()))) : 0.0;
+    r = volume > 0.0 && !beams.empty() ? std::sqrt(TargetPairHits * area / (Pi * double(beams.size()))) : 0.0;
   else
-    r = volume > 0.0 && length > 0.0 ? 2.0 * kTargetPairHits * area / (Pi * length) : 0.0;
+    r = volume > 0.0 && length > 0.0 ? 2.0 * TargetPairHits * area / (Pi * length) : 0.0;
   // Beams in a plane or on a line (no volume), or none: the scene's scale.
-  if (!(r > 0.0) || !std::isfinite(r)) r = kBeamRadiusFraction * diagonal;
+  if (!(r > 0.0) || !std::isfinite(r)) r = BeamRadiusFraction * diagonal;
   // Never wider than the old fixed default: few photons must not blur the medium away.
-  if (diagonal > 0.0f && std::isfinite(diagonal)) r = std::min(r, double(kMaxBeamRadiusFraction * diagonal));
+  if (diagonal > 0.0f && std::isfinite(diagonal)) r = std::min(r, double(MaxBeamRadiusFraction * diagonal));
   s.radius = float(r);
   if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
     throw Error(location, "transient_beams: cannot derive a beam radius (no beams and no scene extent); give \"radius\"");

@@ -61,13 +61,13 @@ struct BeamSettings : PathDepthSettings {
   /// V^(1/3) through beams spread evenly and isotropically over V passes
   /// within r of about L V^(1/3) 2r (pi/4) / V of them (the mean |sin| of
   /// isotropic directions is pi/4), so
-  ///   r = 2 kTargetPairHits V^(2/3) / (pi L)
-  /// gives each such segment about kTargetPairHits pairs: the estimate's
+  ///   r = 2 TargetPairHits V^(2/3) / (pi L)
+  /// gives each such segment about TargetPairHits pairs: the estimate's
   /// cost per camera segment stays bounded whatever the photon count, and
   /// the radius shrinks as photons are added. Photon points (P of them,
   /// zero-length beams) instead meet a segment in its cylinder of volume
   /// pi r^2 V^(1/3), P pi r^2 V^(1/3) / V of them, so
-  ///   r = sqrt(kTargetPairHits V^(2/3) / (pi P)).
+  ///   r = sqrt(TargetPairHits V^(2/3) / (pi P)).
   /// Falls back to a fraction of `sceneBounds`' diagonal when the beams span
   /// no volume. Deterministic: the beams are the same for a given seed on any
   /// thread count.
@@ -77,7 +77,7 @@ struct BeamSettings : PathDepthSettings {
   /// a gather is worth its query (a camera segment's BVH traversal costs
   /// about as much as tens of pair estimates), few enough that the kernel
   /// stays narrow (docs/BENCHMARKS.md, "transient_beams cost").
-  static constexpr double kTargetPairHits = 25.0;
+  static constexpr double TargetPairHits = 25.0;
 
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)

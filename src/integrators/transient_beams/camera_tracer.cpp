@@ -20,10 +20,10 @@ namespace femto::beams {
 namespace {
 
 /// Specular bounces before a camera path is abandoned (max_depth may be unlimited).
-constexpr int kMaxSpecularBounces = 64;
+constexpr int MaxSpecularBounces = 64;
 /// Photons arriving this close to grazing (|cos| w.r.t. the shading normal)
 /// are skipped: f = eval / |cos| would divide by rounding noise.
-constexpr float kMinPhotonCosine = 1e-4f;
+constexpr float MinPhotonCosine = 1e-4f;
 
 }  // namespace
 
@@ -44,7 +44,7 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
   s.ray = Ray(cameraRay.o, cameraRay.d);
   s.medium = scene.sensor().medium();
   s.vertex = cameraRay.o;
-  for (int passThrough = 0, bounces = 0; passThrough < MaxPassThrough && bounces < kMaxSpecularBounces;) {
+  for (int passThrough = 0, bounces = 0; passThrough < MaxPassThrough && bounces < MaxSpecularBounces;) {
     SurfaceInteraction si;
     bool hit = scene.rayIntersect(s.ray, si);
     if (s.medium && !crossMedium(scene, s, hit, si, sampler, recorder)) return;
@@ -211,7 +211,7 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
     if (!(opl < horizon)) continue;
     Vec3f local = si.toLocal(photon.wi);
     float cosine = std::abs(local.z);
-    if (cosine < kMinPhotonCosine) continue;
+    if (cosine < MinPhotonCosine) continue;
     // eval() includes |cos wo|: divide it out to get f (Jensen's estimate uses f alone).
     Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
     if (f.isBlack()) continue;

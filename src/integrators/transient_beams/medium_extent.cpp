@@ -9,14 +9,14 @@
 namespace femto::beams {
 namespace {
 /// Surfaces skipped before the probe gives up and answers the sensor's medium.
-constexpr int kMaxProbeHits = 64;
+constexpr int MaxProbeHits = 64;
 /// Optical depth beyond which a homogeneous medium's transmittance (e^-40) is negligible.
-constexpr float kNegligibleOpticalDepth = 40.0f;
+constexpr float NegligibleOpticalDepth = 40.0f;
 }  // namespace
 
 const Medium* mediumAround(const Scene& scene, const Ray& start) {
   Ray ray(start.o, start.d);
-  for (int i = 0; i < kMaxProbeHits; ++i) {
+  for (int i = 0; i < MaxProbeHits; ++i) {
     SurfaceInteraction si;
     if (!scene.rayIntersect(ray, si)) break;
     const Medium* inside = si.shape->interiorMedium();
@@ -33,7 +33,7 @@ float unboundedSegmentLength(const Medium& medium, double opl, double horizon) {
   if (medium.isHomogeneous()) {
     Color3f sigmaT = medium.majorant();
     float minSigmaT = std::min(sigmaT.r, std::min(sigmaT.g, sigmaT.b));
-    if (minSigmaT > 0.0f) length = std::min(length, kNegligibleOpticalDepth / minSigmaT);
+    if (minSigmaT > 0.0f) length = std::min(length, NegligibleOpticalDepth / minSigmaT);
   }
   return std::isfinite(length) ? length : 0.0f;
 }

@@ -19,11 +19,11 @@ namespace femto::beams {
 namespace {
 
 /// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
-constexpr size_t kMaxEmitters = 65535;
-constexpr int kMaxPhotonDepth = 32767;
+constexpr size_t MaxEmitters = 65535;
+constexpr int MaxPhotonDepth = 32767;
 static_assert(sizeof(Beam) <= 64, "a beam should fit a cache line");
 /// Photons per parallel work item: outputs are concatenated in item order.
-constexpr uint64_t kPhotonsPerBlock = 1024;
+constexpr uint64_t PhotonsPerBlock = 1024;
 
 /// The random numbers of one photon: a PCG32 stream restarted per photon
 /// from (pass seed, photon index), so the photon is the same on any thread.
@@ -107,7 +107,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   // The camera adds at least one segment to every photon path: a photon
   // segment `depth` ends paths of at least depth + 1 segments.
   for (int passThrough = 0;
-       passThrough < MaxPassThrough && ph.depth < kMaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
+       passThrough < MaxPassThrough && ph.depth < MaxPhotonDepth && settings_.depthAllowed(ph.depth + 1);) {
     SurfaceInteraction si;
     bool hit = scene_.rayIntersect(ph.ray, si);
     if (ph.medium) {
@@ -242,14 +242,14 @@ bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, 
 }
 
 PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon) {
-  if (scene.emitters().size() > kMaxEmitters)
+  if (scene.emitters().size() > MaxEmitters)
     throw Error(settings.location, str("transient_beams: the scene has ", scene.emitters().size(),
-                                       " emitters; photons can name at most ", kMaxEmitters));
+                                       " emitters; photons can name at most ", MaxEmitters));
   const auto start = std::chrono::steady_clock::now();
   PhotonPass pass;
   pass.photonCount = uint64_t(settings.photonCount);
   pass.beamPhotonCount = uint64_t(settings.beamPhotons());
-  const uint64_t blocks = (pass.photonCount + kPhotonsPerBlock - 1) / kPhotonsPerBlock;
+  const uint64_t blocks = (pass.photonCount + PhotonsPerBlock - 1) / PhotonsPerBlock;
   struct Block {
     std::vector<Beam> beams;
     std::vector<SurfacePhoton> photons;
@@ -258,8 +258,8 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
   tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
     // One tracer per block: cheap to make, and no thread-local state to share.
     PhotonTracer tracer(scene, settings, horizon);
-    const uint64_t end = std::min(pass.photonCount, (b + 1) * kPhotonsPerBlock);
-    for (uint64_t i = b * kPhotonsPerBlock; i < end; ++i)
+    const uint64_t end = std::min(pass.photonCount, (b + 1) * PhotonsPerBlock);
+    for (uint64_t i = b * PhotonsPerBlock; i < end; ++i)
       tracer.trace(seed, i, out[b].beams, out[b].photons, i < pass.beamPhotonCount);
   });
   size_t beamCount = 0, photonCount = 0;

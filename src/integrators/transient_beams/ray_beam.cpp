@@ -14,13 +14,13 @@ namespace {
 // |cos(theta)| below this: the camera segment runs perpendicular to the beam,
 // its projection s(t) is constant and the cap planes do not clip it (dividing
 // by cos(theta) would produce inf or 0/0).
-constexpr float kPerpendicular = 1e-12f;
+constexpr float Perpendicular = 1e-12f;
 // sin^2(theta) below this (theta < 1e-5 rad, about the rounding of unit float
 // vectors): the lines are parallel and the closest-approach quadratic
 // degenerates (its leading coefficient is rounding noise). The distance to
 // the axis then varies by < 1e-5 per unit length; it is taken at the middle
 // of the slab-clipped segment.
-constexpr float kParallelSin2 = 1e-10f;
+constexpr float ParallelSin2 = 1e-10f;
 
 }  // namespace
 
@@ -41,7 +41,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   const Vec3f wPerp = w - v * cosTheta;
   const Vec3f dPerp = delta - v * s0;
   const float a = dot(wPerp, wPerp);  // sin^2(theta)
-  const bool parallel = !(a > kParallelSin2);
+  const bool parallel = !(a > ParallelSin2);
   // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
   // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
   // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
@@ -52,7 +52,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
 
   // Slab between the cap planes, 0 <= s(t) <= length, intersected with [0, tMax].
   float lo = 0.0f, hi = tMax;
-  if (std::abs(cosTheta) > kPerpendicular) {
+  if (std::abs(cosTheta) > Perpendicular) {
     const float invCos = 1.0f / cosTheta;
     const float t0 = -s0 * invCos, t1 = (length - s0) * invCos;
     lo = std::max(lo, std::min(t0, t1));

@@ -58,7 +58,7 @@
 namespace femto {
 namespace {
 /// Mixed into a pass's seed for its photons, so they draw from other streams than its pixels.
-constexpr uint64_t kPhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
+constexpr uint64_t PhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
 
 /// Work and time summed over the passes of one render: the statistics line
 /// logged at the end ("transient_beams: ..."), which the benchmarks read
@@ -123,7 +123,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     };
     RenderStats stats = renderTransientPasses(scene, options, settings.passes, [&](int pass, double horizon) {
       collect();
-      const uint64_t seed = mixSeed(passSeed(options.seed, pass), kPhotonSeedSalt);
+      const uint64_t seed = mixSeed(passSeed(options.seed, pass), PhotonSeedSalt);
       auto trace = [&] {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
         if (pass == 0) settings = settings.withBeamRadiusFrom(traced.beams, scene.bbox());

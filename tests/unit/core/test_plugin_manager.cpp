@@ -15,11 +15,11 @@
 namespace femto {
 namespace {
 
-const std::filesystem::path kTestPluginDir = FEMTO_TEST_PLUGIN_DIR;
+const std::filesystem::path TestPluginDir = FEMTO_TEST_PLUGIN_DIR;
 
 PluginManager& manager() {
   static bool prepared = [] {
-    PluginManager::instance().prependSearchPath(kTestPluginDir);
+    PluginManager::instance().prependSearchPath(TestPluginDir);
     return true;
   }();
   (void)prepared;
@@ -60,7 +60,7 @@ TEST(PluginManager, NothingLoadedAtStartup) {
 
 TEST(PluginManager, RefusesOtherAbiByName) {
   std::string message = test::errorMessageOf([] { manager().load("test_wrong_abi"); });
-  std::string file = (kTestPluginDir / "test_wrong_abi.so").string();
+  std::string file = (TestPluginDir / "test_wrong_abi.so").string();
   EXPECT_EQ(message, "plugin \"test_wrong_abi\" (" + file + ") was built for femto plugin ABI " +
                          std::to_string(FemtoAbiVersion + 1) + ", this femto has ABI " +
                          std::to_string(FemtoAbiVersion) + ": rebuild it");

@@ -23,7 +23,7 @@ using namespace femto;
 
 namespace {
 
-constexpr int kResolution = 16, kBins = 32;
+constexpr int Resolution = 16, Bins = 32;
 
 struct Render {
   Bitmap steady, before, after;
@@ -36,9 +36,9 @@ Render renderFog(const std::string& name, std::map<std::string, std::string> def
   auto dir = test::scratchDir("steady-horizon-" + name);
   LoadOptions options;
   options.strict = true;
-  options.defines = {{"resolution", std::to_string(kResolution)},
+  options.defines = {{"resolution", std::to_string(Resolution)},
                      {"spp", "4"},
-                     {"bins", std::to_string(kBins)},
+                     {"bins", std::to_string(Bins)},
                      {"bin_width", "0.0625"},
                      {"frames", "false"}};
   for (auto& [key, value] : defines) options.defines[key] = value;
@@ -59,7 +59,7 @@ Render renderFog(const std::string& name, std::map<std::string, std::string> def
     r.after = readImage(dir / "fog_after.exr");
     int h = 0, w = 0, bins = 0;
     r.volume = test::readVolume(dir / "fog.npy", h, w, bins);
-    EXPECT_EQ(bins, kBins);
+    EXPECT_EQ(bins, Bins);
   }
   return r;
 }
@@ -67,14 +67,14 @@ Render renderFog(const std::string& name, std::map<std::string, std::string> def
 /// Sum over the bins of pixel (x, y), channel c.
 double binSum(const Render& r, int x, int y, int c) {
   double sum = 0.0;
-  for (int b = 0; b < kBins; ++b) sum += r.volume[((size_t(y) * kResolution + x) * kBins + b) * 3 + c];
+  for (int b = 0; b < Bins; ++b) sum += r.volume[((size_t(y) * Resolution + x) * Bins + b) * 3 + c];
   return sum;
 }
 
 double imageSum(const Bitmap& image) {
   double sum = 0.0;
-  for (int y = 0; y < kResolution; ++y)
-    for (int x = 0; x < kResolution; ++x)
+  for (int y = 0; y < Resolution; ++y)
+    for (int x = 0; x < Resolution; ++x)
       for (int c = 0; c < 3; ++c) sum += image.pixel(x, y)[c];
   return sum;
 }
@@ -84,8 +84,8 @@ double imageSum(const Bitmap& image) {
 TEST(TransientSteadyHorizon, SteadyImageHoldsExactlyTheLightBeforeTheHorizon) {
   Render window = renderFog("window", {});
   Render complete = renderFog("complete", {{"complete_steady", "true"}});
-  for (int y = 0; y < kResolution; ++y)
-    for (int x = 0; x < kResolution; ++x)
+  for (int y = 0; y < Resolution; ++y)
+    for (int x = 0; x < Resolution; ++x)
       for (int c = 0; c < 3; ++c) {
         float steady = window.steady.pixel(x, y)[c];
         // Box filter: the horizon is the window's end, nothing is deposited after it.
@@ -93,8 +93,8 @@ TEST(TransientSteadyHorizon, SteadyImageHoldsExactlyTheLightBeforeTheHorizon) {
         EXPECT_NEAR(steady, binSum(window, x, y, c) + window.before.pixel(x, y)[c], 1e-5 * std::max(1.0f, steady))
             << x << "," << y << "," << c;
         // The bins themselves do not depend on the horizon (same samples).
-        for (int b = 0; b < kBins; ++b) {
-          size_t i = ((size_t(y) * kResolution + x) * kBins + b) * 3 + c;
+        for (int b = 0; b < Bins; ++b) {
+          size_t i = ((size_t(y) * Resolution + x) * Bins + b) * 3 + c;
           ASSERT_EQ(window.volume[i], complete.volume[i]) << x << "," << y << " bin " << b;
         }
       }
@@ -110,8 +110,8 @@ TEST(TransientSteadyHorizon, CompleteSteadyIsTheSteadyRenderOfTheSameSamples) {
   Render transient = renderFog("complete-transient", {{"complete_steady", "true"}});
   Render steady = renderFog("complete-steady", {{"film", "hdrfilm"}});
   ASSERT_TRUE(steady.volume.empty());
-  for (int y = 0; y < kResolution; ++y)
-    for (int x = 0; x < kResolution; ++x)
+  for (int y = 0; y < Resolution; ++y)
+    for (int x = 0; x < Resolution; ++x)
       for (int c = 0; c < 3; ++c) {
         float s = transient.steady.pixel(x, y)[c];
         // Same paths (same seed and sampler streams, infinite horizon in

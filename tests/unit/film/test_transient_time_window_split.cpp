@@ -24,18 +24,18 @@ using namespace femto;
 
 namespace {
 
-constexpr int kResolution = 20;
+constexpr int Resolution = 20;
 // Bin width 1/16 and window edges 3, 5, 7: every bin edge is a dyadic
 // rational, so (opl - start) / bin width is exact in both renders.
-constexpr double kBinWidth = 0.0625;
+constexpr double BinWidth = 0.0625;
 
 /// The volume (h, w, bins, 3) of scenes/cornell-box-fog rendered over
-/// [start, start + bins * kBinWidth) with `filter`.
+/// [start, start + bins * BinWidth) with `filter`.
 std::vector<float> renderWindow(const std::string& name, double start, int bins, const std::string& filter) {
   auto dir = test::scratchDir("time-window-" + name);
   LoadOptions options;
   options.strict = true;
-  options.defines = {{"resolution", std::to_string(kResolution)}, {"spp", "4"},
+  options.defines = {{"resolution", std::to_string(Resolution)}, {"spp", "4"},
                      {"bins", std::to_string(bins)},           {"bin_width", "0.0625"},
                      {"start", std::to_string(start)},         {"time_filter", filter},
                      {"frames", "false"}};
@@ -54,23 +54,23 @@ std::vector<float> renderWindow(const std::string& name, double start, int bins,
 }
 
 void expectSplitEqualsWhole(const std::string& filter) {
-  constexpr int kHalf = 32;
-  std::vector<float> first = renderWindow(filter + "-first", 3.0, kHalf, filter);
-  std::vector<float> second = renderWindow(filter + "-second", 3.0 + kHalf * kBinWidth, kHalf, filter);
-  std::vector<float> whole = renderWindow(filter + "-whole", 3.0, 2 * kHalf, filter);
+  constexpr int Half = 32;
+  std::vector<float> first = renderWindow(filter + "-first", 3.0, Half, filter);
+  std::vector<float> second = renderWindow(filter + "-second", 3.0 + Half * BinWidth, Half, filter);
+  std::vector<float> whole = renderWindow(filter + "-whole", 3.0, 2 * Half, filter);
   ASSERT_EQ(whole.size(), 2 * first.size());
   ASSERT_EQ(whole.size(), 2 * second.size());
   size_t mismatches = 0, nonzero[2] = {0, 0};
-  for (size_t pixel = 0; pixel < size_t(kResolution) * kResolution; ++pixel)
-    for (int b = 0; b < 2 * kHalf; ++b)
+  for (size_t pixel = 0; pixel < size_t(Resolution) * Resolution; ++pixel)
+    for (int b = 0; b < 2 * Half; ++b)
       for (int c = 0; c < 3; ++c) {
-        const std::vector<float>& part = b < kHalf ? first : second;
-        float split = part[(pixel * kHalf + b % kHalf) * 3 + c];
-        float one = whole[(pixel * 2 * kHalf + b) * 3 + c];
+        const std::vector<float>& part = b < Half ? first : second;
+        float split = part[(pixel * Half + b % Half) * 3 + c];
+        float one = whole[(pixel * 2 * Half + b) * 3 + c];
         if (split != one && ++mismatches <= 5)
           ADD_FAILURE() << "pixel " << pixel << " bin " << b << " channel " << c << ": split " << split
                         << ", whole " << one;
-        nonzero[b / kHalf] += one > 0.0f;
+        nonzero[b / Half] += one > 0.0f;
       }
   EXPECT_EQ(mismatches, 0u);
   // Both halves hold light (the fog's wavefront and the walls): the test compares something.

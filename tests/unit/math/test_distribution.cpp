@@ -14,8 +14,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 2;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 2;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 }  // namespace
 
@@ -58,7 +58,7 @@ TEST(Distribution1D, ContinuousSamplingMatchesItsPdf) {
   };
   std::function<double(const Point2f&)> pdf = [&](const Point2f& p) { return d.pdf(p.x); };
   ChiSquareResult r = testSampler<Point2f>(planarDomain(0, 1, 0, 1, 32, 2), sample, pdf, 200000);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
 }
 
 TEST(Distribution1D, AllZeroWeightsSampleUniformlyWithZeroIntegral) {
@@ -91,7 +91,7 @@ TEST(Distribution2D, SamplingMatchesItsPdf) {
   };
   std::function<double(const Point2f&)> pdf = [&](const Point2f& p) { return d.pdf(p); };
   ChiSquareResult r = testSampler<Point2f>(planarDomain(0, 1, 0, 1, 20, 12), sample, pdf, 300000);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   // The density is the normalised weight of the cell.
   EXPECT_FLOAT_EQ(d.pdf({0.65f, 0.1f}), 4.0f / d.integral());
   EXPECT_EQ(d.pdf({0.5f, 0.5f}), 0.0f);

@@ -13,8 +13,8 @@ namespace {
 
 // Number of chi-square tests in this file, for the Sidak correction: together
 // they reject correct warps with probability 1%.
-constexpr int kChiSquareTests = 7;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 7;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 using DirectionFn = std::function<Vec3f(const Point2f&)>;
 using DirectionPdf = std::function<double(const Vec3f&)>;
@@ -22,7 +22,7 @@ using DirectionPdf = std::function<double(const Vec3f&)>;
 void expectDirectionalWarpFits(const DirectionFn& sample, const DirectionPdf& pdf) {
   GridDomain<Vec3f> domain = sphericalDomain(24, 48);
   ChiSquareResult r = testSampler<Vec3f>(domain, sample, pdf);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   std::vector<double> cells = integrateCells<Vec3f>(domain, pdf);
   EXPECT_NEAR(std::accumulate(cells.begin(), cells.end(), 0.0), 1.0, 2e-3) << "pdf does not integrate to 1";
 }
@@ -37,7 +37,7 @@ TEST(Warp, UniformDiskConcentric) {
   std::function<Point2f(const Point2f&)> sample = warp::squareToUniformDiskConcentric;
   std::function<double(const Point2f&)> pdf = [](const Point2f& p) { return double(warp::squareToUniformDiskPdf(p)); };
   ChiSquareResult r = testSampler<Point2f>(domain, sample, pdf, 1000000, 64);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   std::vector<double> cells = integrateCells<Point2f>(domain, pdf, 64);
   EXPECT_NEAR(std::accumulate(cells.begin(), cells.end(), 0.0), 1.0, 2e-3);
 }
@@ -69,7 +69,7 @@ TEST(Warp, UniformConeNarrow) {
   std::function<Vec3f(const Point2f&)> sample = [&](const Point2f& u) { return warp::squareToUniformCone(u, cosCutoff); };
   std::function<double(const Vec3f&)> pdf = [&](const Vec3f& v) { return warp::squareToUniformConePdf(v, cosCutoff); };
   ChiSquareResult r = testSampler<Vec3f>(domain, sample, pdf);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   std::vector<double> cells = integrateCells<Vec3f>(domain, pdf, 32);
   EXPECT_NEAR(std::accumulate(cells.begin(), cells.end(), 0.0), 1.0, 2e-3);
 }
@@ -87,7 +87,7 @@ TEST(Warp, UniformTriangle) {
   // The triangle's hypotenuse runs along cell diagonals: integrate finely so
   // the midpoint rule's error there stays well below the sampling noise.
   ChiSquareResult r = testSampler<Point2f>(domain, sample, pdf, 1000000, 64);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
 }
 
 // The test machinery itself must be able to fail: a cosine sampler checked

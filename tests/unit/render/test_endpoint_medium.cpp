@@ -19,7 +19,7 @@ using namespace femto::test;
 
 namespace {
 
-const char* kFog06 = R"(<medium type="homogeneous" id="fog"><rgb name="sigmaS" value="0.4"/><rgb name="sigmaA" value="0.1"/></medium>)";
+const char* Fog06 = R"(<medium type="homogeneous" id="fog"><rgb name="sigmaS" value="0.4"/><rgb name="sigmaA" value="0.1"/></medium>)";
 
 /// A point light and a camera in fog, in front of a diffuse wall; Mitsuba 0.6
 /// spelling. `fogAtTop`: the medium declared at the top and referenced by
@@ -27,8 +27,8 @@ const char* kFog06 = R"(<medium type="homogeneous" id="fog"><rgb name="sigmaS" v
 std::string scene06(bool fogAtTop) {
   return str(R"(<scene version="0.6.0">
   <integrator type="volpath"><integer name="maxDepth" value="4"/></integrator>)",
-             fogAtTop ? kFog06 : "", R"(
-  <emitter type="point">)", fogAtTop ? R"(<ref id="fog"/>)" : kFog06, R"(
+             fogAtTop ? Fog06 : "", R"(
+  <emitter type="point">)", fogAtTop ? R"(<ref id="fog"/>)" : Fog06, R"(
     <point name="position" x="0.4" y="0.3" z="1.2"/><rgb name="intensity" value="4"/></emitter>
   <shape type="rectangle"><transform name="toWorld"><rotate y="1" angle="180"/><scale value="2"/><translate z="3"/></transform></shape>
   <sensor type="perspective"><float name="fov" value="60"/><ref id="fog"/>
@@ -84,10 +84,10 @@ TEST(EndpointMedium, Mitsuba06RefAndNestedMediumReachEmitterAndSensor) {
   }
   // A <medium> nested in the <sensor>, the emitter referring to it.
   std::string nestedInSensor = scene06(true);
-  nestedInSensor.replace(nestedInSensor.find(kFog06), std::string(kFog06).size(), "");
+  nestedInSensor.replace(nestedInSensor.find(Fog06), std::string(Fog06).size(), "");
   nestedInSensor.replace(nestedInSensor.find(R"(<float name="fov" value="60"/><ref id="fog"/>)"),
                          std::string(R"(<float name="fov" value="60"/><ref id="fog"/>)").size(),
-                         str(R"(<float name="fov" value="60"/>)", kFog06));
+                         str(R"(<float name="fov" value="60"/>)", Fog06));
   auto scene = loadSceneStrict(nestedInSensor);
   ASSERT_NE(scene->sensor().medium(), nullptr);
   EXPECT_EQ(scene->emitters()[0]->medium(), scene->sensor().medium());

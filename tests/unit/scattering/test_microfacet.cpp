@@ -26,7 +26,7 @@ std::string describe(const Config& c) {
   return str(microfacetTypeName(c.type), " alpha=(", c.alphaU, ", ", c.alphaV, ")");
 }
 
-const Config kConfigs[] = {
+const Config Configs[] = {
     {MicrofacetType::Beckmann, 0.3f, 0.3f},
     {MicrofacetType::Beckmann, 0.15f, 0.6f},
     {MicrofacetType::GGX, 0.3f, 0.3f},
@@ -39,11 +39,11 @@ Vec3f direction(float thetaDeg, float phiDeg) {
 }
 
 // Incident directions of the visible-normal tests: normal, oblique, grazing.
-const Vec3f kIncident[] = {direction(0, 0), direction(50, 30), direction(85, 200)};
+const Vec3f Incident[] = {direction(0, 0), direction(50, 30), direction(85, 200)};
 
 // Chi-square tests in this file, for the Sidak correction.
-constexpr int kChiSquareTests = 4 * 3 + 4;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 4 * 3 + 4;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 /// Integral of g(m) over the upper hemisphere by the midpoint rule in
 /// (theta, phi), in double precision. Fine in theta: D of alpha = 0.1 is
@@ -72,7 +72,7 @@ GridDomain<Vec3f> hemisphereDomain(int nTheta, int nPhi) {
 
 TEST(Microfacet, ProjectedAreaOfDIsOne) {
   // integral D(m) cos(theta_m) dm = 1 (Walter et al. 2007, eq. 4).
-  std::vector<Config> configs(std::begin(kConfigs), std::end(kConfigs));
+  std::vector<Config> configs(std::begin(Configs), std::end(Configs));
   configs.push_back({MicrofacetType::Beckmann, 0.1f, 0.1f});
   configs.push_back({MicrofacetType::GGX, 0.1f, 0.1f});
   configs.push_back({MicrofacetType::GGX, 1.0f, 1.0f});
@@ -87,8 +87,8 @@ TEST(Microfacet, ProjectedAreaOfDIsOne) {
 TEST(Microfacet, VisibleNormalDensityIsNormalised) {
   // integral G1(wi, m) max(0, wi.m) D(m) dm = cos(theta_i) (Heitz 2014, eq.
   // 17): holds only if Lambda is the exact Smith Lambda of D.
-  for (const Config& c : kConfigs)
-    for (const Vec3f& wi : kIncident) {
+  for (const Config& c : Configs)
+    for (const Vec3f& wi : Incident) {
       SCOPED_TRACE(str(describe(c), " wi=", wi));
       MicrofacetDistribution dist(c.type, c.alphaU, c.alphaV);
       double integral = integrateHemisphere([&](const Vec3f& m) { return double(dist.pdf(wi, m)); });
@@ -117,8 +117,8 @@ namespace {
 /// pdf(). Each test draws its own random numbers (seed), so the tests are
 /// independent, as the Sidak correction assumes.
 void expectVisibleSamplingMatches(MicrofacetType type, uint64_t seed) {
-  for (const Config& c : kConfigs)
-    for (const Vec3f& wi : kIncident) {
+  for (const Config& c : Configs)
+    for (const Vec3f& wi : Incident) {
       if (c.type != type) continue;
       SCOPED_TRACE(str(describe(c), " wi=", wi));
       MicrofacetDistribution dist(c.type, c.alphaU, c.alphaV, true);
@@ -127,7 +127,7 @@ void expectVisibleSamplingMatches(MicrofacetType type, uint64_t seed) {
         return double(dist.G1(wi, m)) * std::max(0.0f, dot(wi, m)) * dist.D(m) / wi.z;
       };
       ChiSquareResult r = testSampler<Vec3f>(hemisphereDomain(32, 64), sample, density, 150000, 8, ++seed);
-      EXPECT_GT(r.pValue, kSignificance) << r.message;
+      EXPECT_GT(r.pValue, Significance) << r.message;
     }
 }
 
@@ -143,14 +143,14 @@ TEST(Microfacet, GGXVisibleNormalSamplingMatchesTheVisibleNormalDensity) {
 
 TEST(Microfacet, NormalSamplingMatchesDCosTheta) {
   uint64_t seed = 200;
-  for (const Config& c : kConfigs) {
+  for (const Config& c : Configs) {
     SCOPED_TRACE(describe(c));
     MicrofacetDistribution dist(c.type, c.alphaU, c.alphaV, false);
     Vec3f wi = direction(40, 10);
     std::function<Vec3f(const Point2f&)> sample = [&](const Point2f& u) { return dist.sample(wi, u); };
     std::function<double(const Vec3f&)> density = [&](const Vec3f& m) { return double(dist.D(m)) * m.z; };
     ChiSquareResult r = testSampler<Vec3f>(hemisphereDomain(32, 64), sample, density, 150000, 8, ++seed);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
     EXPECT_NEAR(dist.pdf(wi, direction(20, 70)), dist.D(direction(20, 70)) * std::cos(degToRad(20)), 1e-5);
   }
 }

@@ -33,15 +33,15 @@ double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z;
 double length(const D3& a) { return std::sqrt(dot(a, a)); }
 D3 normalized(const D3& a) { return a * (1.0 / length(a)); }
 
-const D3 kSphereCentre{0, 0, 0};
-constexpr double kRadius = 0.5, kEta = 1.5, kWallZ = -1.0;
-const D3 kLight{-1.2, 1.6, 1.2};
+const D3 SphereCentre{0, 0, 0};
+constexpr double Radius = 0.5, Eta = 1.5, WallZ = -1.0;
+const D3 Light{-1.2, 1.6, 1.2};
 
 /// Distance along the unit ray (o, d) to its first intersection with the
 /// sphere, if any (`inside`: the origin is inside, take the far root).
 std::optional<double> hitSphere(const D3& o, const D3& d, bool inside) {
-  D3 oc = o - kSphereCentre;
-  double b = dot(oc, d), c = dot(oc, oc) - kRadius * kRadius, disc = b * b - c;
+  D3 oc = o - SphereCentre;
+  double b = dot(oc, d), c = dot(oc, oc) - Radius * Radius, disc = b * b - c;
   if (disc < 0.0) return std::nullopt;
   double t = inside ? -b + std::sqrt(disc) : -b - std::sqrt(disc);
   return t > 0.0 ? std::optional<double>(t) : std::nullopt;
@@ -67,17 +67,17 @@ WallPath wallPath(D3 o, D3 d) {
   WallPath path{0.0, 0.0, {}};
   if (auto t = hitSphere(o, d, false)) {
     D3 entry = o + d * *t;
-    D3 inside = refract(d, normalized(entry - kSphereCentre), 1.0 / kEta);
+    D3 inside = refract(d, normalized(entry - SphereCentre), 1.0 / Eta);
     double chord = *hitSphere(entry, inside, true);
     D3 exit = entry + inside * chord;
-    path.opl += *t + kEta * chord;
+    path.opl += *t + Eta * chord;
     path.glassChord = chord;
-    d = refract(inside, normalized(kSphereCentre - exit), kEta);
+    d = refract(inside, normalized(SphereCentre - exit), Eta);
     o = exit;
   }
-  double toWall = (kWallZ - o.z) / d.z;
+  double toWall = (WallZ - o.z) / d.z;
   path.wallPoint = o + d * toWall;
-  path.opl += toWall + length(kLight - path.wallPoint);
+  path.opl += toWall + length(Light - path.wallPoint);
   return path;
 }
 
@@ -96,12 +96,12 @@ TEST(GlassDelayScene, LightThroughTheSphereArrivesLaterByTheGlassDelay) {
   // Odd resolution: the centre pixel's ray is the camera axis, through the
   // sphere's centre (chord = diameter). Pixels ~0.045 units wide at the wall
   // keep the spread of path lengths inside one pixel below a bin.
-  constexpr int kResolution = 81, kBins = 160;
-  constexpr double kStart = 3.0, kBinWidth = 0.05;
+  constexpr int Resolution = 81, Bins = 160;
+  constexpr double Start = 3.0, BinWidth = 0.05;
   auto dir = test::scratchDir("glass-delay");
   LoadOptions options;
   options.strict = true;
-  options.defines = {{"resolution", std::to_string(kResolution)}, {"spp", "16"}, {"bins", std::to_string(kBins)},
+  options.defines = {{"resolution", std::to_string(Resolution)}, {"spp", "16"}, {"bins", std::to_string(Bins)},
                      {"bin_width", "0.05"}, {"start", "3"}, {"frames", "false"}};
   auto scene = loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/glass-delay/scene.xml", options);
   RenderOptions render;
@@ -112,8 +112,8 @@ TEST(GlassDelayScene, LightThroughTheSphereArrivesLaterByTheGlassDelay) {
   EXPECT_EQ(stats.invalidSamples, 0u);
   int h = 0, w = 0, bins = 0;
   std::vector<float> volume = test::readVolume(dir / "glass.npy", h, w, bins);
-  ASSERT_EQ(w, kResolution);
-  ASSERT_EQ(bins, kBins);
+  ASSERT_EQ(w, Resolution);
+  ASSERT_EQ(bins, Bins);
 
   // The OPL at the centre of the brightest bin of pixel (x, y).
   auto peakOpl = [&](int x, int y) {
@@ -125,19 +125,19 @@ TEST(GlassDelayScene, LightThroughTheSphereArrivesLaterByTheGlassDelay) {
       if (sum > bestValue) bestValue = sum, best = b;
     }
     EXPECT_GT(bestValue, 0.0) << "pixel " << x << "," << y << " received no light";
-    return kStart + (best + 0.5) * kBinWidth;
+    return Start + (best + 0.5) * BinWidth;
   };
 
-  const int centre = kResolution / 2;
+  const int centre = Resolution / 2;
   auto [o, d] = pixelRay(*scene, centre, centre);
   WallPath through = wallPath(o, d);
-  ASSERT_NEAR(through.glassChord, 2.0 * kRadius, 1e-4) << "the centre pixel looks through the sphere's centre";
+  ASSERT_NEAR(through.glassChord, 2.0 * Radius, 1e-4) << "the centre pixel looks through the sphere's centre";
 
   // Beside the sphere, on the light's side (away from the mirror): the pixel
   // of the centre row whose wall point is nearest x = -0.9, clear of the sphere.
   int besideX = -1;
   WallPath beside{};
-  for (int x = 0; x < kResolution; ++x) {
+  for (int x = 0; x < Resolution; ++x) {
     auto [bo, bd] = pixelRay(*scene, x, centre);
     WallPath p = wallPath(bo, bd);
     if (p.glassChord == 0.0 && (besideX < 0 || std::abs(p.wallPoint.x + 0.9) < std::abs(beside.wallPoint.x + 0.9)))
@@ -149,14 +149,14 @@ TEST(GlassDelayScene, LightThroughTheSphereArrivesLaterByTheGlassDelay) {
   std::printf("through the sphere: peak at OPL %.3f, expected %.4f; beside (pixel %d): %.3f, expected %.4f\n",
               measuredThrough, through.opl, besideX, measuredBeside, beside.opl);
   // Each peak within one bin of its analytic arrival...
-  EXPECT_NEAR(measuredThrough, through.opl, kBinWidth);
-  EXPECT_NEAR(measuredBeside, beside.opl, kBinWidth);
+  EXPECT_NEAR(measuredThrough, through.opl, BinWidth);
+  EXPECT_NEAR(measuredBeside, beside.opl, BinWidth);
   // ...and the delay between them is the geometric difference of the two
   // paths plus the glass's (eta - 1) x chord = 0.5 (ten bins), up to one bin
   // (both peaks are bin centres): ignoring the glass's index would miss by
   // nine bins or more.
-  double glassDelay = (kEta - 1.0) * through.glassChord;
+  double glassDelay = (Eta - 1.0) * through.glassChord;
   double geometric = (through.opl - glassDelay) - beside.opl;
-  EXPECT_NEAR(measuredThrough - measuredBeside, geometric + glassDelay, kBinWidth);
-  EXPECT_GT(measuredThrough - measuredBeside - geometric, glassDelay - kBinWidth);
+  EXPECT_NEAR(measuredThrough - measuredBeside, geometric + glassDelay, BinWidth);
+  EXPECT_GT(measuredThrough - measuredBeside - geometric, glassDelay - BinWidth);
 }

@@ -11,10 +11,10 @@
 // into blocks and each block's mean per channel is compared, so an error that
 // moves light within the image (a caustic in the wrong place) fails as well as
 // one that changes its total. Two estimates agree when their means differ by
-// less than kSigmas standard errors of the difference (from the runs' spread:
+// less than Sigmas standard errors of the difference (from the runs' spread:
 // transient_beams' noise is mostly its photon maps', shared by all pixels of a
 // run, so per-pixel sample variances would understate it) plus, for
-// transient_beams, an explicit allowance for its kernel bias (see kBeamsBias).
+// transient_beams, an explicit allowance for its kernel bias (see BeamsBias).
 //
 // The runs' spread measures the error only if every run sees many of the
 // events that carry the light. Light found by rare camera samples (the small
@@ -56,9 +56,9 @@ using Defines = std::map<std::string, std::string>;
 /// Standard errors of the difference allowed. With 6 runs per estimate the
 /// difference's standard error is itself estimated from ~10 degrees of
 /// freedom: P(|t_10| > 5) is 5e-4 per compared value.
-constexpr double kSigmas = 5.0;
+constexpr double Sigmas = 5.0;
 
-/// transient_beams' kernel-bias allowance: kKernelBias (2 % of the value,
+/// transient_beams' kernel-bias allowance: KernelBias (2 % of the value,
 /// transient_agreement_util.h), checked here against a measurement on the
 /// fog Cornell box (16x16, 2x2 blocks, 16 runs, the same seeds per radius so
 /// differences are sharper than the noise): the image mean fell by 0.33 %,
@@ -70,20 +70,20 @@ constexpr double kSigmas = 5.0;
 /// linear in r is twice what halving r removes: 2 % at the default radii.
 /// (On the Armadillo, halving or doubling the surface radius moved the image
 /// mean by < 0.3 %.)
-constexpr double kBeamsBias = kKernelBias;
+constexpr double BeamsBias = KernelBias;
 
 /// transient_beams' own defaults (beam_settings.h: one pass of 100 000
 /// photons, derived radii, every camera segment gathering), for the seed
 /// scenes, whose integrator-transient_beams.xml holds their figures'
-/// settings (more passes and photons, smaller surface radii): kBeamsBias was
+/// settings (more passes and photons, smaller surface radii): BeamsBias was
 /// measured at these radii, and the figures' photon counts would make the
 /// runs slow.
-const Defines kBeamsDefaults = {{"passes", "1"},          {"photon_count", "100000"}, {"beam_photon_count", "10000"},
+const Defines BeamsDefaults = {{"passes", "1"},          {"photon_count", "100000"}, {"beam_photon_count", "10000"},
                                 {"gather_fraction", "1"}, {"radius", "0"},            {"surface_radius", "0"}};
 
-/// `defines` with kBeamsDefaults under them.
+/// `defines` with BeamsDefaults under them.
 Defines withBeamsDefaults(Defines defines) {
-  defines.insert(kBeamsDefaults.begin(), kBeamsDefaults.end());
+  defines.insert(BeamsDefaults.begin(), BeamsDefaults.end());
   return defines;
 }
 
@@ -188,7 +188,7 @@ std::vector<Mean> blockMeans(const std::shared_ptr<Scene>& scene, const std::str
   return means;
 }
 
-/// Each mean of `estimate` within kSigmas standard errors of the
+/// Each mean of `estimate` within Sigmas standard errors of the
 /// difference (plus `bias` times the reference value) of `reference`'s.
 /// Prints the whole image's differences and the largest, in standard errors.
 void expectBlocksAgree(const std::vector<Mean>& estimate, const std::vector<Mean>& reference, const std::string& what,
@@ -203,7 +203,7 @@ void expectBlocksAgree(const std::vector<Mean>& estimate, const std::vector<Mean
     ASSERT_GT(se, 0.0) << what << ": noiseless estimates cannot be told apart from equal ones";
     sigmas[k] = (a - b) / se;
     if (std::abs(sigmas[k]) > std::abs(worst)) worst = sigmas[k];
-    EXPECT_NEAR(a, b, kSigmas * se + bias * std::abs(b) + 1e-9)
+    EXPECT_NEAR(a, b, Sigmas * se + bias * std::abs(b) + 1e-9)
         << what << (k + 3 >= n ? ", whole image" : str(", block ", k / 3)) << " channel " << k % 3 << ": "
         << sigmas[k] << " standard errors (" << 100.0 * (a / b - 1.0) << " %)";
   }
@@ -257,7 +257,7 @@ void compareWithSteady(const Comparison& c) {
   std::printf("%s: relative standard errors of the image mean: steady %.2g, transient_path %.2g, transient_beams %.2g\n",
               c.scene.c_str(), relativeError(reference), relativeError(path), relativeError(beams));
   expectBlocksAgree(path, reference, c.scene + ": transient_path time integral vs steady");
-  expectBlocksAgree(beams, reference, c.scene + ": transient_beams time integral vs steady", kBeamsBias);
+  expectBlocksAgree(beams, reference, c.scene + ": transient_beams time integral vs steady", BeamsBias);
 }
 
 }  // namespace
@@ -300,7 +300,7 @@ TEST(TimeIntegralVsSteady, SeedGlassMirrorBalls) {
   // Fog, a glass and a mirror ball, a small sphere light (finite variance:
   // no mask). Window OPL 3 to 11 in 8 bins; the reference is transient_path
   // on an hdrfilm (fog). transient_beams with its default photon count and
-  // derived radii (kBeamsDefaults).
+  // derived radii (BeamsDefaults).
   Comparison c;
   c.scene = "seed-glass-mirror-balls";
   c.common = {{"resolution", "16"}};

@@ -53,18 +53,18 @@ const TransientFilm& transientFilmOf(const Scene& scene) {
   return *film;
 }
 
-const std::string kTransientPath = "<integrator type=\"transient_path\"/>";
+const std::string TransientPath = "<integrator type=\"transient_path\"/>";
 
 }  // namespace
 
 TEST(LoaderDialects, TransientHdrFilmTakesMitransientsDefaultWindow) {
-  auto scene = loadStrict(sceneWith(kTransientPath, "<film type=\"transient_hdr_film\"><rfilter type=\"box\"/></film>"));
+  auto scene = loadStrict(sceneWith(TransientPath, "<film type=\"transient_hdr_film\"><rfilter type=\"box\"/></film>"));
   const TimeGrid& grid = transientFilmOf(*scene).timeGrid();
   EXPECT_EQ(grid.bins, 2048);
   EXPECT_DOUBLE_EQ(grid.binWidth, double(0.003f));
   EXPECT_EQ(grid.start, 0.0);
   // femto's own film keeps requiring its window.
-  EXPECT_SCENE_ERROR(loadStrict(sceneWith(kTransientPath, "<film type=\"transient\">\n<integer name=\"temporal_bins\" "
+  EXPECT_SCENE_ERROR(loadStrict(sceneWith(TransientPath, "<film type=\"transient\">\n<integer name=\"temporal_bins\" "
                                                           "value=\"4\"/></film>")),
                      "dialect.xml:4", "missing parameter \"bin_width_opl\"");
 }
@@ -83,24 +83,24 @@ TEST(LoaderDialects, StreakHdrFilmMapsTimeExposureAndOffset) {
   EXPECT_DOUBLE_EQ(film.timeGrid().start, 3.0);
   EXPECT_EQ(film.timeFilter().type(), TimeFilter::Type::Box);
   // Mitsuba 2's streak film defaults: 1000 bins of 1 from 0.
-  auto defaults = loadStrict(sceneWith(kTransientPath, "<film type=\"streakhdrfilm\"/>", "2.0.0"));
+  auto defaults = loadStrict(sceneWith(TransientPath, "<film type=\"streakhdrfilm\"/>", "2.0.0"));
   EXPECT_EQ(transientFilmOf(*defaults).timeGrid().bins, 1000);
   EXPECT_DOUBLE_EQ(transientFilmOf(*defaults).timeGrid().binWidth, 1.0);
   // The newer names work too; both spellings of one parameter are refused at the line.
-  auto newer = loadStrict(sceneWith(kTransientPath, "<film type=\"streakhdrfilm\"><integer name=\"num_bins\" value=\"8\"/>"
+  auto newer = loadStrict(sceneWith(TransientPath, "<film type=\"streakhdrfilm\"><integer name=\"num_bins\" value=\"8\"/>"
                                                     "<float name=\"bin_width_opl\" value=\"0.5\"/></film>", "2.0.0"));
   EXPECT_EQ(transientFilmOf(*newer).timeGrid().bins, 8);
-  EXPECT_SCENE_ERROR(loadStrict(sceneWith(kTransientPath, "<film type=\"streakhdrfilm\">\n<integer name=\"time\" value=\"8\"/>\n"
+  EXPECT_SCENE_ERROR(loadStrict(sceneWith(TransientPath, "<film type=\"streakhdrfilm\">\n<integer name=\"time\" value=\"8\"/>\n"
                                                           "<integer name=\"num_bins\" value=\"8\"/></film>", "2.0.0")),
                      "dialect.xml:6", "\"num_bins\" and \"time\" are one parameter");
-  EXPECT_SCENE_ERROR(loadStrict(sceneWith(kTransientPath, "<film type=\"streakhdrfilm\">\n<float name=\"exposure_time\" value=\"-1\"/>"
+  EXPECT_SCENE_ERROR(loadStrict(sceneWith(TransientPath, "<film type=\"streakhdrfilm\">\n<float name=\"exposure_time\" value=\"-1\"/>"
                                                           "</film>", "2.0.0")),
                      "dialect.xml:5", "exposure_time");
 }
 
 TEST(LoaderDialects, StreakHdrFilmTimeFilterIsTheRfilterNamedTfilter) {
   auto film = [](const std::string& tfilter) {
-    return sceneWith(kTransientPath, "<film type=\"streakhdrfilm\"><integer name=\"time\" value=\"16\"/><rfilter type=\"box\"/>\n" +
+    return sceneWith(TransientPath, "<film type=\"streakhdrfilm\"><integer name=\"time\" value=\"16\"/><rfilter type=\"box\"/>\n" +
                                          tfilter + "</film>", "2.0.0");
   };
   auto gaussian = loadStrict(film("<rfilter name=\"tfilter\" type=\"gaussian\"><float name=\"stddev\" value=\"1.5\"/></rfilter>"));

@@ -39,7 +39,7 @@ TEST(LoaderReadXml, VersionGivesTheDialect) {
   EXPECT_EQ(readXmlString("<scene version=\"3.0.0\"/>", "a").dialect, 3);
   EXPECT_EQ(readXmlString("<scene version='2.1'/>", "a").dialect, 2);
   EXPECT_EQ(readXmlString("<scene version=\"0.6.0\"/>", "a").dialect, 0);
-  EXPECT_EQ(readXmlString("<scene/>", "a").dialect, kUnknownDialect);
+  EXPECT_EQ(readXmlString("<scene/>", "a").dialect, UnknownDialect);
   EXPECT_EQ(parse("<scene/>").root.dialect, 3);  // a scene without version is Mitsuba 3
   EXPECT_SCENE_ERROR(readXmlString("<scene version=\"abc\"/>", "a.xml"), "a.xml:1", "expected a version");
 }

@@ -4,15 +4,15 @@
 
 namespace femto {
 namespace {
-constexpr std::array<const char*, 13> kTags = {"scene", "integrator", "sensor", "film", "sampler", "rfilter", "shape",
+constexpr std::array<const char*, 13> Tags = {"scene", "integrator", "sensor", "film", "sampler", "rfilter", "shape",
                                                "bsdf",  "texture",    "emitter", "medium", "phase", "volume"};
 }
 
-const char* kindTag(ObjectKind kind) { return kTags.at(size_t(kind)); }
+const char* kindTag(ObjectKind kind) { return Tags.at(size_t(kind)); }
 
 std::optional<ObjectKind> kindFromTag(std::string_view tag) {
-  for (size_t i = 0; i < kTags.size(); ++i)
-    if (tag == kTags[i]) return ObjectKind(i);
+  for (size_t i = 0; i < Tags.size(); ++i)
+    if (tag == Tags[i]) return ObjectKind(i);
   return std::nullopt;
 }
 

@@ -10,8 +10,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 // Redrawing more often than this only costs time (and flickers).
-constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
-constexpr int kBarWidth = 30;
+constexpr auto RedrawInterval = std::chrono::milliseconds(100);
+constexpr int BarWidth = 30;
 
 std::string formatDuration(double seconds) {
   long s = long(seconds + 0.5);
@@ -32,7 +32,7 @@ ProgressReporter::ProgressReporter(std::string label, uint64_t total, bool enabl
       total_(total),
       enabled_(enabled && isatty(STDERR_FILENO)),
       start_(Clock::now()),
-      lastDraw_(start_ - kRedrawInterval) {}
+      lastDraw_(start_ - RedrawInterval) {}
 
 ProgressReporter::~ProgressReporter() { finish(); }
 
@@ -47,7 +47,7 @@ void ProgressReporter::update(uint64_t delta) {
   std::unique_lock<std::mutex> lock(drawMutex_, std::try_to_lock);
   if (!lock.owns_lock() || finished_) return;
   auto now = Clock::now();
-  if (now - lastDraw_ < kRedrawInterval) return;
+  if (now - lastDraw_ < RedrawInterval) return;
   lastDraw_ = now;
   draw(done, false);
 }
@@ -61,10 +61,10 @@ void ProgressReporter::finish() {
 
 void ProgressReporter::draw(uint64_t done, bool final) {
   double fraction = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
-  int filled = int(fraction * kBarWidth + 0.5);
+  int filled = int(fraction * BarWidth + 0.5);
   double elapsed = elapsedSeconds();
   std::string bar(size_t(filled), '#');
-  bar.append(size_t(kBarWidth - filled), ' ');
+  bar.append(size_t(BarWidth - filled), ' ');
   std::string eta = fraction > 0 && !final ? ", ETA " + formatDuration(elapsed * (1 - fraction) / fraction) : "";
   // \r and clear-to-end-of-line: the bar overwrites itself on one line.
   std::fprintf(stderr, "\r%s [%s] %5.1f%% (%s%s)\033[K%s", label_.c_str(), bar.c_str(), fraction * 100.0,

@@ -25,9 +25,9 @@ TimeGrid readTimeGrid(const Properties& props, const TimeAxisSpelling& spelling)
   const std::string binsName = spelledName(props, spelling.bins, spelling.binsAlias);
   const std::string widthOplName = spelledName(props, spelling.binWidth, spelling.binWidthAlias);
   const std::string startOplName = spelledName(props, spelling.start, spelling.startAlias);
-  constexpr int64_t kMaxBins = 1 << 20;
-  grid.bins = int(spelling.defaultBins > 0 ? props.getInt(binsName, spelling.defaultBins, 1, kMaxBins)
-                                           : props.getIntIn(binsName, 1, kMaxBins));
+  constexpr int64_t MaxBins = 1 << 20;
+  grid.bins = int(spelling.defaultBins > 0 ? props.getInt(binsName, spelling.defaultBins, 1, MaxBins)
+                                           : props.getIntIn(binsName, 1, MaxBins));
   bool opl = props.has(startOplName) || props.has(widthOplName);
   bool seconds = props.has("start_time") || props.has("bin_width_time");
   if (opl && seconds)

@@ -7,7 +7,7 @@
 // position samples from here under any to_world.
 //
 // The perimeter is an elliptic integral without a closed form; it is
-// tabulated on kIntervals equal angle intervals, each integrated by 4-point
+// tabulated on Intervals equal angle intervals, each integrated by 4-point
 // Gauss-Legendre quadrature (the speed is smooth and periodic). Against the
 // exact AGM perimeter the relative error is ~1e-16 for axis ratios up to 4,
 // below 1e-9 up to 50 and 1e-7 up to 1000 (tests/unit/plugins/shapes/test_cylinder_affine.cpp).
@@ -21,7 +21,7 @@ namespace femto {
 
 class EllipseArc {
  public:
-  static constexpr int kIntervals = 256;
+  static constexpr int Intervals = 256;
 
   EllipseArc() = default;
   /// U and V must not be parallel (the ellipse would be a segment).
@@ -45,7 +45,7 @@ class EllipseArc {
   Vec3d u_, v_;
   double perimeter_ = 0.0;
   bool circle_ = true;
-  std::vector<double> cumulative_;  // arc length from 0 to the start of each interval; kIntervals + 1 entries
+  std::vector<double> cumulative_;  // arc length from 0 to the start of each interval; Intervals + 1 entries
 };
 
 }  // namespace femto

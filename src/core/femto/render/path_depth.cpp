@@ -6,15 +6,15 @@
 namespace femto {
 namespace {
 
-constexpr int64_t kIntMax = std::numeric_limits<int>::max();
+constexpr int64_t IntMax = std::numeric_limits<int>::max();
 
 }  // namespace
 
 PathDepthSettings PathDepthSettings::read(const Properties& props, int defaultMaxDepth) {
   PathDepthSettings s;
   s.maxDepth =
-      int(std::min(props.getInt("max_depth", defaultMaxDepth, -1, Properties::Unbounded, "-1: no limit"), kIntMax));
-  s.rrDepth = int(std::min(props.getInt("rr_depth", s.rrDepth, 1, Properties::Unbounded), kIntMax));
+      int(std::min(props.getInt("max_depth", defaultMaxDepth, -1, Properties::Unbounded, "-1: no limit"), IntMax));
+  s.rrDepth = int(std::min(props.getInt("rr_depth", s.rrDepth, 1, Properties::Unbounded), IntMax));
   return s;
 }
 

@@ -86,7 +86,7 @@ struct ConductorEntry {
 // percent in normal-incidence reflectance). Sources: Johnson & Christy 1972
 // (Ag, Au, Cu), Rakic 1995 (Al), Palik, "Handbook of Optical Constants of
 // Solids" (Cr, Hg, Mo, Ni, Pt, Rh, W). "none" is a perfect mirror.
-constexpr std::array<ConductorEntry, 15> kConductors = {{
+constexpr std::array<ConductorEntry, 15> Conductors = {{
     {"none", {0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}},
     {"Ag", {0.15f, 0.12f, 0.14f}, {4.1f, 3.3f, 2.5f}},
     {"Al", {1.49f, 0.96f, 0.62f}, {7.8f, 6.69f, 5.47f}},
@@ -107,14 +107,14 @@ constexpr std::array<ConductorEntry, 15> kConductors = {{
 }  // namespace
 
 std::optional<std::pair<Color3f, Color3f>> lookupConductor(std::string_view name) {
-  for (const auto& entry : kConductors)
+  for (const auto& entry : Conductors)
     if (entry.name == name) return std::make_pair(entry.eta, entry.k);
   return std::nullopt;
 }
 
 std::vector<std::string> knownConductorNames() {
   std::vector<std::string> out;
-  for (const auto& entry : kConductors) out.emplace_back(entry.name);
+  for (const auto& entry : Conductors) out.emplace_back(entry.name);
   return out;
 }
 

@@ -12,7 +12,7 @@ namespace {
 // Names as in Mitsuba's table (0.6 and 3); values at the sodium D line
 // (~589 nm) from standard references (CRC Handbook of Chemistry and Physics,
 // refractiveindex.info, Schott glass catalogue for BK7).
-constexpr std::array<std::pair<std::string_view, float>, 23> kIORs = {{
+constexpr std::array<std::pair<std::string_view, float>, 23> IORs = {{
     {"vacuum", 1.0f},
     {"helium", 1.000036f},
     {"hydrogen", 1.000132f},
@@ -41,14 +41,14 @@ constexpr std::array<std::pair<std::string_view, float>, 23> kIORs = {{
 }  // namespace
 
 std::optional<float> lookupIOR(std::string_view name) {
-  for (const auto& [n, v] : kIORs)
+  for (const auto& [n, v] : IORs)
     if (n == name) return v;
   return std::nullopt;
 }
 
 std::vector<std::string> knownIORNames() {
   std::vector<std::string> out;
-  for (const auto& entry : kIORs) out.emplace_back(entry.first);
+  for (const auto& entry : IORs) out.emplace_back(entry.first);
   return out;
 }
 

@@ -65,7 +65,7 @@ class Expander {
         throw sceneError(node, str("file \"", name, "\" includes itself (include cycle)"));
     XmlNode included = readXmlFile(*file);
     result_.sources.add(included.source);
-    if (included.dialect == kUnknownDialect) setDialect(included, node.dialect);
+    if (included.dialect == UnknownDialect) setDialect(included, node.dialect);
     includeStack.push_back(canonical);
     if (included.tag == "scene") {
       expandChildren(included, includeStack);
@@ -116,7 +116,7 @@ std::string substituteParameters(const std::string& text, const std::map<std::st
 ExpandResult expandDirectives(XmlNode& root, const fs::path& sceneDir, const std::map<std::string, std::string>& defines) {
   ExpandResult result{FileResolver(sceneDir), {}, {}};
   result.sources.add(root.source);
-  if (root.dialect == kUnknownDialect) setDialect(root, 3);
+  if (root.dialect == UnknownDialect) setDialect(root, 3);
   Expander expander(result, defines);
   std::vector<fs::path> includeStack;
   if (root.source) {

@@ -5,7 +5,7 @@
 namespace femto::xml {
 namespace {
 
-constexpr const char* kUseSurfaceOrMedia =
+constexpr const char* UseSurfaceOrMedia =
     "use path (surfaces), transient_path (media, time-resolved) or transient_beams (media, photon beams)";
 
 /// Mitsuba's shading-normal wrappers: femto refuses them rather than render
@@ -43,7 +43,7 @@ std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
   };
   auto it = advice.find(name);
   if (it == advice.end()) return "";
-  return " (" + it->second + "; " + kUseSurfaceOrMedia + ")";
+  return " (" + it->second + "; " + UseSurfaceOrMedia + ")";
 }
 
 }  // namespace femto::xml

@@ -61,7 +61,7 @@ XmlNode readXmlString(const std::string& text, const std::string& fileName) {
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (!root) throw Error(SourceLocation{fileName, 1}, "malformed XML: the file has no root element");
-  int dialect = kUnknownDialect;
+  int dialect = UnknownDialect;
   if (const char* version = root->Attribute("version")) {
     try {
       dialect = dialectOf(version);

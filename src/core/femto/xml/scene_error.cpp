@@ -8,8 +8,8 @@ std::string withEchoedLine(const std::string& message, const std::string& lineTe
   size_t end = lineText.find_last_not_of(" \t\r");
   std::string line = lineText.substr(begin, end - begin + 1);
   // Sampled spectra and matrices make very long lines; the start locates the element.
-  constexpr size_t kMaxEcho = 160;
-  if (line.size() > kMaxEcho) line = line.substr(0, kMaxEcho) + " ...";
+  constexpr size_t MaxEcho = 160;
+  if (line.size() > MaxEcho) line = line.substr(0, MaxEcho) + " ...";
   return message + "\n    " + line;
 }
 

@@ -18,7 +18,7 @@ std::string camelToSnake(std::string_view name) {
 }
 
 void upgradeLegacyNames(XmlNode& node) {
-  if (node.dialect != kUnknownDialect && node.dialect < 2) {
+  if (node.dialect != UnknownDialect && node.dialect < 2) {
     for (auto& [key, value] : node.attributes)
       if (key == "name") value = camelToSnake(value);
   }

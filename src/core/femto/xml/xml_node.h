@@ -23,7 +23,7 @@ struct SourceText {
 
 /// Dialect of a file: the major version of its root's version="" attribute.
 /// Mitsuba 0.4-0.6 files are 0; Mitsuba 3 files are 2 or 3 (-1 = not given).
-inline constexpr int kUnknownDialect = -1;
+inline constexpr int UnknownDialect = -1;
 
 struct XmlNode {
   std::string tag;
@@ -31,7 +31,7 @@ struct XmlNode {
   std::vector<XmlNode> children;
   SourceLocation location;
   std::shared_ptr<const SourceText> source;
-  int dialect = kUnknownDialect;
+  int dialect = UnknownDialect;
   /// For <ref>: the object node it names (set by resolveReferences).
   const XmlNode* target = nullptr;
 

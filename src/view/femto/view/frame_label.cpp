@@ -9,10 +9,10 @@
 namespace femto {
 namespace {
 
-constexpr int kGlyphWidth = 5, kGlyphHeight = 7;
+constexpr int GlyphWidth = 5, GlyphHeight = 7;
 
 /// Rows of a glyph, top first; bit 4 is the leftmost pixel.
-using Glyph = std::array<uint8_t, kGlyphHeight>;
+using Glyph = std::array<uint8_t, GlyphHeight>;
 
 const Glyph* glyph(char c) {
   static const Glyph digits[10] = {
@@ -69,13 +69,13 @@ std::string binLabel(const TimeGrid& grid, int bin) {
 void drawLabel(Bitmap& image, const std::string& text) {
   if (text.empty() || image.width <= 0 || image.height <= 0) return;
   const int scale = std::max(1, image.height / 128);
-  const int advance = (kGlyphWidth + 1) * scale, pad = scale;
-  fill(image, 0, 0, int(text.size()) * advance + pad, kGlyphHeight * scale + 2 * pad, 0.0f);
+  const int advance = (GlyphWidth + 1) * scale, pad = scale;
+  fill(image, 0, 0, int(text.size()) * advance + pad, GlyphHeight * scale + 2 * pad, 0.0f);
   for (size_t k = 0; k < text.size(); ++k) {
     const Glyph* g = glyph(text[k]);
     if (!g) continue;
-    for (int row = 0; row < kGlyphHeight; ++row)
-      for (int col = 0; col < kGlyphWidth; ++col)
+    for (int row = 0; row < GlyphHeight; ++row)
+      for (int col = 0; col < GlyphWidth; ++col)
         if ((*g)[size_t(row)] & (0x10 >> col))
           fill(image, pad + int(k) * advance + col * scale, pad + row * scale, scale, scale, 1.0f);
   }

@@ -10,8 +10,8 @@ using namespace femto::test;
 
 namespace {
 
-const Color3f kRho(0.3f, 0.5f, 0.8f);
-const Color3f kLe(1.0f, 0.5f, 2.0f);
+const Color3f Rho(0.3f, 0.5f, 0.8f);
+const Color3f Le(1.0f, 0.5f, 2.0f);
 
 /// The furnace of the path tests (a closed diffuse sphere of reflectance rho
 /// emitting Le inside) rendered by `direct`: emission seen directly plus one
@@ -21,8 +21,8 @@ std::shared_ptr<Scene> directFurnace(const std::string& integratorParams) {
   <integrator type="direct">)", integratorParams, R"(</integrator>
   <shape type="sphere">
     <boolean name="flip_normals" value="true"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(kRho), R"("/></bsdf>
-    <emitter type="area"><rgb name="radiance" value=")", rgb(kLe), R"("/></emitter>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(Rho), R"("/></bsdf>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
   </shape>
 </scene>)"));
 }
@@ -35,13 +35,13 @@ TEST(DirectFurnace, EmissionPlusOneBounceForEverySampleSplit) {
                              R"(<integer name="shading_samples" value="4"/>)"}) {
     SCOPED_TRACE(params);
     auto scene = directFurnace(params);
-    expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), kLe * (Color3f(1.0f) + kRho));
+    expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), Le * (Color3f(1.0f) + Rho));
   }
 }
 
 TEST(DirectFurnace, HideEmittersLeavesOnlyTheBounce) {
   auto scene = directFurnace(R"(<boolean name="hide_emitters" value="true"/>)");
-  expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), kLe * kRho);
+  expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), Le * Rho);
 }
 
 TEST(DirectPointLight, DiffusePlaneIsExact) {

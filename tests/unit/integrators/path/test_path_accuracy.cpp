@@ -50,23 +50,23 @@ Color3f furnaceRadiance(const Color3f& rho, const Color3f& Le, int maxDepth) {
   return L;
 }
 
-const Color3f kRho(0.3f, 0.5f, 0.8f);
-const Color3f kLe(1.0f, 0.5f, 2.0f);
+const Color3f Rho(0.3f, 0.5f, 0.8f);
+const Color3f Le(1.0f, 0.5f, 2.0f);
 
 }  // namespace
 
 TEST(PathFurnace, DepthOneSeesOnlyEmission) {
-  auto scene = furnaceScene(kRho, kLe, R"(<integer name="max_depth" value="1"/>)");
+  auto scene = furnaceScene(Rho, Le, R"(<integer name="max_depth" value="1"/>)");
   Estimate e = estimateLi(*scene, 2000, randomInteriorRay);
-  expectWithinErrorBars(e, furnaceRadiance(kRho, kLe, 1));
+  expectWithinErrorBars(e, furnaceRadiance(Rho, Le, 1));
   EXPECT_EQ(e.standardError, Color3f(0.0f));
 }
 
 TEST(PathFurnace, BoundedDepthsMatchTheGeometricSeries) {
   for (int k : {2, 3, 6}) {
     SCOPED_TRACE(str("max_depth = ", k));
-    auto scene = furnaceScene(kRho, kLe, str(R"(<integer name="max_depth" value=")", k, R"("/>)"));
-    expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), furnaceRadiance(kRho, kLe, k));
+    auto scene = furnaceScene(Rho, Le, str(R"(<integer name="max_depth" value=")", k, R"("/>)"));
+    expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), furnaceRadiance(Rho, Le, k));
   }
 }
 
@@ -74,14 +74,14 @@ TEST(PathFurnace, UnboundedDepthConvergesToLeOverOneMinusRho) {
   // Russian roulette from the first bounce and from the default depth 5 must both stay unbiased.
   for (const char* rr : {"1", "5"}) {
     SCOPED_TRACE(str("rr_depth = ", rr));
-    auto scene = furnaceScene(kRho, kLe, str(R"(<integer name="rr_depth" value=")", rr, R"("/>)"));
-    expectWithinErrorBars(estimateLi(*scene, 40000, randomInteriorRay), furnaceRadiance(kRho, kLe, -1));
+    auto scene = furnaceScene(Rho, Le, str(R"(<integer name="rr_depth" value=")", rr, R"("/>)"));
+    expectWithinErrorBars(estimateLi(*scene, 40000, randomInteriorRay), furnaceRadiance(Rho, Le, -1));
   }
 }
 
 TEST(PathFurnace, HideEmittersRemovesOnlyDirectlyVisibleEmission) {
-  auto scene = furnaceScene(kRho, kLe, R"(<integer name="max_depth" value="2"/><boolean name="hide_emitters" value="true"/>)");
-  expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), kRho * kLe);
+  auto scene = furnaceScene(Rho, Le, R"(<integer name="max_depth" value="2"/><boolean name="hide_emitters" value="true"/>)");
+  expectWithinErrorBars(estimateLi(*scene, 20000, randomInteriorRay), Rho * Le);
 }
 
 TEST(PathFurnace, RenderedImageMatchesTheClosedForm) {
@@ -89,7 +89,7 @@ TEST(PathFurnace, RenderedImageMatchesTheClosedForm) {
   // With a box filter pixels are independent estimates, so the spread of the
   // pixel values gives the standard error of the image mean.
   const int spp = 16, size = 16;
-  auto scene = furnaceScene(kRho, kLe, "",
+  auto scene = furnaceScene(Rho, Le, "",
                             str(R"(<integer name="width" value=")", size, R"("/><integer name="height" value=")", size,
                                 R"("/><rfilter type="box"/>)"),
                             std::to_string(spp));
@@ -110,7 +110,7 @@ TEST(PathFurnace, RenderedImageMatchesTheClosedForm) {
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) pixels.add(Color3f(image.pixel(x, y)[0], image.pixel(x, y)[1], image.pixel(x, y)[2]));
   Estimate e = pixels.estimate();
-  expectWithinErrorBars(e, furnaceRadiance(kRho, kLe, -1));
+  expectWithinErrorBars(e, furnaceRadiance(Rho, Le, -1));
   std::filesystem::remove_all(dir);
 }
 
@@ -121,20 +121,20 @@ namespace {
 /// cos(theta) = h / d; the plane reflects L = rho / pi * E toward any viewer
 /// above it. Next-event estimation finds a point light exactly, and the
 /// continuation escapes, so Li has no variance.
-const Color3f kPlaneRho(0.2f, 0.5f, 0.8f);
-const Color3f kIntensity(1.0f, 2.0f, 3.0f);
-const Point3f kLightPos(0.5f, -0.3f, 2.0f);
+const Color3f PlaneRho(0.2f, 0.5f, 0.8f);
+const Color3f Intensity(1.0f, 2.0f, 3.0f);
+const Point3f LightPos(0.5f, -0.3f, 2.0f);
 
 std::shared_ptr<Scene> pointOverPlaneScene(int maxDepth) {
   return loadStrict(str(R"(<scene version="3.0.0">
   <integrator type="path"><integer name="max_depth" value=")", maxDepth, R"("/></integrator>
   <shape type="rectangle">
     <transform name="to_world"><scale value="20"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(kPlaneRho), R"("/></bsdf>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")", rgb(PlaneRho), R"("/></bsdf>
   </shape>
   <emitter type="point">
-    <point name="position" x=")", kLightPos.x, R"(" y=")", kLightPos.y, R"(" z=")", kLightPos.z, R"("/>
-    <rgb name="intensity" value=")", rgb(kIntensity), R"("/>
+    <point name="position" x=")", LightPos.x, R"(" y=")", LightPos.y, R"(" z=")", LightPos.z, R"("/>
+    <rgb name="intensity" value=")", rgb(Intensity), R"("/>
   </emitter>
 </scene>)"));
 }
@@ -147,9 +147,9 @@ TEST(PathPointLight, DiffusePlaneRadianceMatchesTheInverseSquareLaw) {
   for (Point3f target : {Point3f(0, 0, 0), Point3f(0.5f, -0.3f, 0), Point3f(3, 2, 0), Point3f(-6, 1, 0)}) {
     SCOPED_TRACE(str("target ", target));
     Estimate e = estimateLi(*scene, 4, [&](PCG32&) { return Ray(eye, normalize(target - eye)); });
-    float d = distance(kLightPos, target);
-    float irradianceScale = (kLightPos.z / d) / (d * d);
-    expectWithinErrorBars(e, kPlaneRho * kIntensity * (InvPi * irradianceScale));
+    float d = distance(LightPos, target);
+    float irradianceScale = (LightPos.z / d) / (d * d);
+    expectWithinErrorBars(e, PlaneRho * Intensity * (InvPi * irradianceScale));
   }
 }
 
@@ -165,5 +165,5 @@ TEST(PathPointLight, TheBackOfTheOneSidedPlaneIsBlackAndDepthOneSeesNoLight) {
 TEST(PathSphereLight, DirectLightingMatchesTheSphereFormFactor) {
   // max_depth 2: direct lighting only.
   expectSphereLightFormFactor(R"(<integrator type="path"><integer name="max_depth" value="2"/></integrator>)",
-                              kPlaneRho, {Point3f(0, 0, 0), Point3f(1.5f, 0, 0), Point3f(0.5f, -1.0f, 0)});
+                              PlaneRho, {Point3f(0, 0, 0), Point3f(1.5f, 0, 0), Point3f(0.5f, -1.0f, 0)});
 }

@@ -26,7 +26,7 @@ using test::Pair;
 using test::PairSpec;
 using test::Rotation;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double DoublePi = 3.14159265358979323846;
 
 RayBeamHit mustHit(const Pair& p, float r, RayBeamKernel k = RayBeamKernel::OneD) {
   RayBeamHit h;
@@ -74,11 +74,11 @@ std::vector<std::pair<const char*, PairSpec>> clippedPairs() {
   s = PairSpec{};
   s.theta = 1e-3, s.sClosest = 1.0, s.tClosest = 1.0, s.length = 2, s.tMax = 5, s.offset = 0.02;
   cases.push_back({"near-parallel", s});
-  s.theta = kPi - 1e-3;
+  s.theta = DoublePi - 1e-3;
   cases.push_back({"near-anti-parallel", s});
   s.theta = 0.0;
   cases.push_back({"parallel", s});
-  s.theta = kPi;
+  s.theta = DoublePi;
   cases.push_back({"anti-parallel", s});
   s.theta = 0.04, s.length = 1.0, s.tMax = 1.5;
   cases.push_back({"shallow, chord longer than both segments", s});
@@ -96,7 +96,7 @@ TEST(RayBeam, ClippedPairsGetTheExactChord) {
     for (RayBeamKernel k : {RayBeamKernel::OneD, RayBeamKernel::Cylinder}) {
       RayBeamHit h = mustHit(p, r, k);
       // Each end of the marched overlap is within one step of the true one.
-      EXPECT_NEAR(h.kernel, ref.length / (kPi * r * r), 2 * ref.step / (kPi * r * r) + 1e-4 * h.kernel);
+      EXPECT_NEAR(h.kernel, ref.length / (DoublePi * r * r), 2 * ref.step / (DoublePi * r * r) + 1e-4 * h.kernel);
       EXPECT_NEAR(h.tRayBegin, ref.tFirst, ref.step + 1e-5);
       EXPECT_NEAR(h.tRayEnd, ref.tLast, ref.step + 1e-5);
       EXPECT_NEAR(h.tRay, 0.5 * (ref.tFirst + ref.tLast), ref.step + 1e-5);
@@ -114,7 +114,7 @@ TEST(RayBeam, CylinderKernelIsTheMarchedChordForRandomPairs) {
   int hits = 0;
   for (int i = 0; i < 60; ++i) {
     PairSpec s;
-    s.theta = kPi * rng.nextDouble();
+    s.theta = DoublePi * rng.nextDouble();
     s.sClosest = 3 * rng.nextDouble() - 0.5, s.tClosest = 3 * rng.nextDouble() - 0.5;
     s.length = 0.2 + 2 * rng.nextDouble(), s.tMax = 0.2 + 2.5 * rng.nextDouble();
     s.offset = 0.12 * (2 * rng.nextDouble() - 1);
@@ -130,7 +130,7 @@ TEST(RayBeam, CylinderKernelIsTheMarchedChordForRandomPairs) {
     if (!hit) continue;
     ++hits;
     EXPECT_TRUE(hitContractHolds(p, h));
-    EXPECT_NEAR(h.kernel * kPi * r * r, ref.length, 2 * ref.step + 1e-5) << i;
+    EXPECT_NEAR(h.kernel * DoublePi * r * r, ref.length, 2 * ref.step + 1e-5) << i;
   }
   EXPECT_GT(hits, 15);
 }
@@ -149,7 +149,7 @@ std::vector<OffsetCase> offsetCases() {
   cases.push_back({"generic", s});
   s.theta = 0.05, s.sClosest = 5, s.tClosest = 5, s.length = 10, s.tMax = 10;
   cases.push_back({"grazing (3 degrees), 1D kernel still fits", s});
-  s.theta = kPi - 0.05;
+  s.theta = DoublePi - 0.05;
   cases.push_back({"grazing anti-parallel", s});
   s.theta = 0.02, s.sClosest = 1, s.tClosest = 1, s.length = 2, s.tMax = 3;
   cases.push_back({"near-parallel, chord clipped", s});
@@ -157,7 +157,7 @@ std::vector<OffsetCase> offsetCases() {
   cases.push_back({"near-parallel 1e-4", s});
   s.theta = 0.0;
   cases.push_back({"parallel", s});
-  s.theta = kPi;
+  s.theta = DoublePi;
   cases.push_back({"anti-parallel", s});
   s = PairSpec{};
   s.theta = 0.7, s.sClosest = 0.01, s.tClosest = 2, s.length = 3, s.tMax = 4;
@@ -191,8 +191,8 @@ TEST(RayBeam, OffsetAverageMatchesTheBlurredBeam) {
       PairSpec s = c.spec;
       s.offset = -R + (i + 0.5) * (2 * R / nd);
       test::Overlap o = marchOverlap(makePair(s, rot), r, 40000);
-      ref += o.length / (kPi * r * r) / nd;
-      marchErr = std::max(marchErr, 2 * o.step / (kPi * r * r));
+      ref += o.length / (DoublePi * r * r) / nd;
+      marchErr = std::max(marchErr, 2 * o.step / (DoublePi * r * r));
     }
     // The chord's sqrt edge at |d| = r limits the midpoint rule in d to
     // O(h^1.5) relative: bound it by one chord's worth of a cell.
@@ -267,7 +267,7 @@ TEST(RayBeam, OplIntervalMatchesTheMarchedExtremes) {
   int checked = 0;
   for (int i = 0; i < 80; ++i) {
     PairSpec s;
-    s.theta = kPi * rng.nextDouble();
+    s.theta = DoublePi * rng.nextDouble();
     s.sClosest = 2 * rng.nextDouble(), s.tClosest = 2 * rng.nextDouble();
     s.length = 0.3 + 2 * rng.nextDouble(), s.tMax = 0.3 + 2 * rng.nextDouble();
     s.offset = 0.09 * (2 * rng.nextDouble() - 1);
@@ -294,7 +294,7 @@ TEST(RayBeam, AntiParallelIntervalCollapses) {
   const float r = 0.05f;
   for (int i = 0; i < 50; ++i) {
     PairSpec s;
-    s.theta = kPi, s.sClosest = 1, s.tClosest = 1, s.length = 2, s.tMax = 3;
+    s.theta = DoublePi, s.sClosest = 1, s.tClosest = 1, s.length = 2, s.tMax = 3;
     s.offset = 0.045 * (2 * rng.nextDouble() - 1);
     s.etaCamera = s.etaBeam = 1.33f;
     Pair p = makePair(s, Rotation(rng), {3, -1, 2});
@@ -327,7 +327,7 @@ TEST(RayBeam, ParallelPairsSpreadWidest) {
   double previousRate = -1;
   // From anti-parallel to parallel the OPL rate per unit camera length grows
   // monotonically from 0 to 2 eta.
-  for (double theta = kPi; theta >= -1e-9; theta -= kPi / 24) {
+  for (double theta = DoublePi; theta >= -1e-9; theta -= DoublePi / 24) {
     PairSpec s;
     s.theta = std::max(theta, 0.0), s.sClosest = 2, s.tClosest = 2, s.length = 4, s.tMax = 4;
     Pair p = makePair(s, rot);
@@ -345,7 +345,7 @@ TEST(RayBeam, ParallelPairsSpreadWidest) {
 TEST(RayBeam, TangentPassesAreMissesOrFinite) {
   PCG32 rng(15, 1);
   const float r = 0.05f;
-  for (double theta : {1e-6, 1e-3, 0.5, 1.5707963, 3.0, kPi - 1e-6}) {
+  for (double theta : {1e-6, 1e-3, 0.5, 1.5707963, 3.0, DoublePi - 1e-6}) {
     Rotation rot(rng);
     for (int k = -40; k <= 40; ++k) {
       PairSpec s;
@@ -354,7 +354,7 @@ TEST(RayBeam, TangentPassesAreMissesOrFinite) {
       RayBeamHit h;
       if (!rayBeamIntersect(p.segment, p.beam, r, h)) continue;
       EXPECT_TRUE(hitContractHolds(p, h)) << theta << " " << k;
-      EXPECT_LE(h.kernel, p.segment.tMax / (kPi * r * r) * (1 + 1e-5)) << theta << " " << k;
+      EXPECT_LE(h.kernel, p.segment.tMax / (DoublePi * r * r) * (1 + 1e-5)) << theta << " " << k;
     }
   }
 }
@@ -463,8 +463,8 @@ TEST(RayBeam, FuzzedPairsKeepTheContract) {
     double scale = std::pow(10.0, 6 * rng.nextDouble() - 3);
     PairSpec s;
     double u = rng.nextDouble();
-    s.theta = u < 0.25 ? std::pow(10.0, -9 * rng.nextDouble()) : u < 0.5 ? kPi - std::pow(10.0, -9 * rng.nextDouble())
-                                                                        : kPi * rng.nextDouble();
+    s.theta = u < 0.25 ? std::pow(10.0, -9 * rng.nextDouble()) : u < 0.5 ? DoublePi - std::pow(10.0, -9 * rng.nextDouble())
+                                                                        : DoublePi * rng.nextDouble();
     s.sClosest = scale * (3 * rng.nextDouble() - 1), s.tClosest = scale * (3 * rng.nextDouble() - 1);
     s.length = scale * rng.nextDouble(), s.tMax = scale * 2 * rng.nextDouble();
     float r = float(scale * std::pow(10.0, -3 * rng.nextDouble()));
@@ -477,7 +477,7 @@ TEST(RayBeam, FuzzedPairsKeepTheContract) {
       ++hits;
       ASSERT_TRUE(hitContractHolds(p, h)) << i;
       double c = std::abs(dot(p.segment.ray.d, p.beam.direction));
-      double bound = std::min(double(p.segment.tMax), p.beam.length / std::max(c, 1e-30)) / (kPi * r * r);
+      double bound = std::min(double(p.segment.tMax), p.beam.length / std::max(c, 1e-30)) / (DoublePi * r * r);
       ASSERT_LE(h.kernel, bound * (1 + 1e-3)) << i;
     }
   }

@@ -20,7 +20,7 @@ using test::makePair;
 using test::Pair;
 using test::PairSpec;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double DoublePi = 3.14159265358979323846;
 
 struct Pencil {
   static constexpr float r = 0.05f;
@@ -78,7 +78,7 @@ std::vector<double> marchedReference(const TimeDeposit& dep, double step, bool o
   for (int i = 0; i < Pencil::alongBeam; ++i) {
     for (int j = 0; j < Pencil::acrossBeam; ++j) {
       Pair p = Pencil::ray(i, j);
-      double density = 1.0 / (kPi * Pencil::r * Pencil::r);
+      double density = 1.0 / (DoublePi * Pencil::r * Pencil::r);
       if (oneD) {
         int inside = 0;
         for (int k = 0; k < steps; ++k) inside += test::insideKernel(p, Pencil::r, tAt(k));
@@ -130,7 +130,7 @@ TEST(RayBeamTransient, CylinderKernelIsExactPerBinAtFineBins) {
   const double step = 2e-4;
   std::vector<double> ref = marchedReference(dep, step);
   std::vector<double> tol =
-      marchTolerance(dep.grid(), ends, step, step / (kPi * Pencil::r * Pencil::r) / Pencil::rays());
+      marchTolerance(dep.grid(), ends, step, step / (DoublePi * Pencil::r * Pencil::r) / Pencil::rays());
   double total = 0, totalRef = 0;
   int nonEmpty = 0;
   for (size_t k = 0; k < est.size(); ++k) {

@@ -17,8 +17,8 @@
 namespace femto::beams {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr double DoublePi = 3.14159265358979323846;
+constexpr float NaN = std::numeric_limits<float>::quiet_NaN();
 
 CameraSegment segmentOf(Point3f o, Vec3f d, float tMax, float eta = 1.0f) {
   CameraSegment s;
@@ -45,7 +45,7 @@ void expectContract(const CameraSegment& s, const RayBeamHit& h, float r) {
   EXPECT_EQ(h.tRayEnd, h.tRay);
   EXPECT_EQ(h.tBeam, 0.0f);
   EXPECT_EQ(h.oplBegin, h.oplEnd);
-  EXPECT_NEAR(h.kernel, 1.0 / (kPi * double(r) * r), 1e-6 * h.kernel);
+  EXPECT_NEAR(h.kernel, 1.0 / (DoublePi * double(r) * r), 1e-6 * h.kernel);
 }
 
 TEST(RayPoint, GenericPairIsTheDiscKernelAtTheProjection) {
@@ -114,20 +114,20 @@ TEST(RayPoint, DegenerateInputIsAMiss) {
   const CameraSegment good = segmentOf(Point3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), 2.0f);
   const Beam near = pointAt(Point3f(0.01f, 0.0f, 1.0f));
   RayBeamHit h;
-  for (float r : {0.0f, -0.1f, kNaN, Infinity, 1e-30f}) EXPECT_FALSE(rayPointIntersect(good, near, r, h)) << "radius " << r;
-  for (float tMax : {0.0f, -1.0f, kNaN}) {
+  for (float r : {0.0f, -0.1f, NaN, Infinity, 1e-30f}) EXPECT_FALSE(rayPointIntersect(good, near, r, h)) << "radius " << r;
+  for (float tMax : {0.0f, -1.0f, NaN}) {
     CameraSegment s = good;
     s.tMax = tMax;
     EXPECT_FALSE(rayPointIntersect(s, near, 0.05f, h)) << "tMax " << tMax;
   }
   CameraSegment nanOrigin = good, nanDirection = good, zeroDirection = good;
-  nanOrigin.ray.o = Point3f(kNaN, 0.0f, 0.0f);
-  nanDirection.ray.d = Vec3f(0.0f, kNaN, 1.0f);
+  nanOrigin.ray.o = Point3f(NaN, 0.0f, 0.0f);
+  nanDirection.ray.d = Vec3f(0.0f, NaN, 1.0f);
   zeroDirection.ray.d = Vec3f(0.0f);
   EXPECT_FALSE(rayPointIntersect(nanOrigin, near, 0.05f, h));
   EXPECT_FALSE(rayPointIntersect(nanDirection, near, 0.05f, h));
   EXPECT_FALSE(rayPointIntersect(zeroDirection, near, 0.05f, h)) << "no direction";
-  EXPECT_FALSE(rayPointIntersect(good, pointAt(Point3f(kNaN, 0.0f, 1.0f)), 0.05f, h));
+  EXPECT_FALSE(rayPointIntersect(good, pointAt(Point3f(NaN, 0.0f, 1.0f)), 0.05f, h));
   EXPECT_FALSE(rayPointIntersect(good, pointAt(Point3f(Infinity, 0.0f, 1.0f)), 0.05f, h));
 }
 

@@ -26,14 +26,14 @@ using femto::beams::tracePhotonPass;
 
 namespace {
 
-const float kEta = 1.33f, kDelay = 0.5f;
+const float Eta = 1.33f, Delay = 0.5f;
 
 /// Two point lights in an unbounded homogeneous medium of index 1.33 whose
 /// phase function delays every scattering by 0.5.
 std::shared_ptr<Scene> litMedium() {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <medium id="m" type="homogeneous"><float name="sigma_t" value="0.8"/><float name="albedo" value="0.9"/>
-    <float name="eta" value=")", kEta, R"("/><phase type="isotropic"><float name="delay" value=")", kDelay, R"("/></phase>
+    <float name="eta" value=")", Eta, R"("/><phase type="isotropic"><float name="delay" value=")", Delay, R"("/></phase>
   </medium>
   <sensor type="perspective"><ref id="m"/></sensor>
   <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
@@ -72,7 +72,7 @@ TEST(TransientBeamsPhotons, FirstBeamsCarryTheEmittedPowerFromTheLights) {
     fromA += isA;
     EXPECT_EQ(beam.emitter, isA ? 0 : 1) << "beams name the emitter (its pulse) in scene order";
     EXPECT_EQ(beam.opl, 0.0) << "emission is a Dirac pulse at OPL 0";
-    EXPECT_FLOAT_EQ(beam.eta, kEta);
+    EXPECT_FLOAT_EQ(beam.eta, Eta);
     EXPECT_NE(beam.medium, nullptr);
     const Color3f& carried = isA ? carriedA : carriedB;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(beam.power[c], carried[c], 1e-5f * carried[c] + 1e-6f);
@@ -98,11 +98,11 @@ TEST(TransientBeamsPhotons, BeamOplIsEtaTimesDistanceTravelledPlusScatteringDela
     // The photon reached this beam's origin from one of the lights along a
     // path at least as long as the straight line, with depth - 1 delays.
     double straight = std::min(distance(beam.origin, lights[0]), distance(beam.origin, lights[1]));
-    double lower = kEta * straight + (beam.depth - 1) * kDelay;
+    double lower = Eta * straight + (beam.depth - 1) * Delay;
     if (beam.depth == 2) {
       // One straight segment from the light that emitted it: exact.
-      double fromA = kEta * distance(beam.origin, lights[0]) + kDelay;
-      double fromB = kEta * distance(beam.origin, lights[1]) + kDelay;
+      double fromA = Eta * distance(beam.origin, lights[0]) + Delay;
+      double fromB = Eta * distance(beam.origin, lights[1]) + Delay;
       EXPECT_NEAR(std::min(std::abs(beam.opl - fromA), std::abs(beam.opl - fromB)), 0.0, 1e-4 * (1.0 + beam.opl));
       ++second;
     } else {
@@ -195,7 +195,7 @@ TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
 
 TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   // Isotropic beams spread evenly over a cube: a segment of the cube's side
-  // meets about kTargetPairHits of them within the derived radius (the
+  // meets about TargetPairHits of them within the derived radius (the
   // formula's assumptions hold here up to the beams' and segments' ends).
   PCG32 rng(3, 3);
   std::vector<Beam> beams;
@@ -236,10 +236,10 @@ TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   }
   const double perSegment = hits / segments;
   std::printf("derived radius %g: %.1f pairs per segment (target %g)\n", resolved.radius, perSegment,
-              BeamSettings::kTargetPairHits);
+              BeamSettings::TargetPairHits);
   // Segments leaving the cube lose up to half their length: between 0.4x and 1.2x.
-  EXPECT_GT(perSegment, 0.4 * BeamSettings::kTargetPairHits);
-  EXPECT_LT(perSegment, 1.2 * BeamSettings::kTargetPairHits);
+  EXPECT_GT(perSegment, 0.4 * BeamSettings::TargetPairHits);
+  EXPECT_LT(perSegment, 1.2 * BeamSettings::TargetPairHits);
   // A given radius is kept; no beams fall back to the scene's scale.
   s.radius = 0.125f;
   EXPECT_EQ(s.withBeamRadiusFrom(beams, BoundingBox3f()).radius, 0.125f);

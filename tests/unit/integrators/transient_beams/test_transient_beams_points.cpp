@@ -28,20 +28,20 @@ using femto::beams::VolumeEstimator;
 
 namespace {
 
-const float kSigmaT = 0.8f, kAlbedo = 0.9f, kEta = 1.33f, kDelay = 0.5f, kIntensity = 2.0f;
-const Point3f kLight(0.8f, 0.0f, 1.0f);
+const float SigmaT = 0.8f, Albedo = 0.9f, Eta = 1.33f, Delay = 0.5f, Intensity = 2.0f;
+const Point3f Light(0.8f, 0.0f, 1.0f);
 
 /// A point light in an unbounded homogeneous medium whose phase function
-/// delays every scattering by kDelay.
+/// delays every scattering by Delay.
 std::shared_ptr<Scene> litMedium() {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
-  <medium id="m" type="homogeneous"><float name="sigma_t" value=")", kSigmaT, R"("/><float name="albedo" value=")",
-                             kAlbedo, R"("/><float name="eta" value=")", kEta,
-                             R"("/><phase type="isotropic"><float name="delay" value=")", kDelay, R"("/></phase>
+  <medium id="m" type="homogeneous"><float name="sigma_t" value=")", SigmaT, R"("/><float name="albedo" value=")",
+                             Albedo, R"("/><float name="eta" value=")", Eta,
+                             R"("/><phase type="isotropic"><float name="delay" value=")", Delay, R"("/></phase>
   </medium>
   <sensor type="perspective"><ref id="m"/></sensor>
-  <emitter type="point"><point name="position" x=")", kLight.x, R"(" y=")", kLight.y, R"(" z=")", kLight.z,
-                             R"("/><float name="intensity" value=")", kIntensity, R"("/></emitter>
+  <emitter type="point"><point name="position" x=")", Light.x, R"(" y=")", Light.y, R"(" z=")", Light.z,
+                             R"("/><float name="intensity" value=")", Intensity, R"("/></emitter>
 </scene>)"));
 }
 
@@ -67,25 +67,25 @@ TEST(TransientBeamsPoints, ScatteringVerticesLeavePointsInBeamUnits) {
   auto scene = litMedium();
   const int64_t n = 2000;
   PhotonPass pass = tracePhotonPass(*scene, pointSettings(n), 42, Infinity);
-  const double phi = 4.0 * Pi * kIntensity;
+  const double phi = 4.0 * Pi * Intensity;
   int first = 0, second = 0;
   for (const Beam& p : pass.beams) {
     ASSERT_EQ(p.length, 0.0f);
     ASSERT_NE(p.medium, nullptr);
     EXPECT_NEAR(length(p.direction), 1.0f, 1e-5f);
-    const double expected = p.depth == 1 ? phi / kSigmaT : phi * kAlbedo / kSigmaT;
+    const double expected = p.depth == 1 ? phi / SigmaT : phi * Albedo / SigmaT;
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(p.power[c], expected, 1e-4 * expected) << "depth " << p.depth;
-    const double fromLight = distance(p.origin, kLight);
+    const double fromLight = distance(p.origin, Light);
     if (p.depth == 1) {
       ++first;
       // Arrived straight from the light: its OPL is eta times the distance, its direction away from the light.
-      EXPECT_NEAR(p.opl, kEta * fromLight, 1e-4 * (1.0 + fromLight));
-      EXPECT_GT(dot(p.direction, normalize(p.origin - kLight)), 0.9999f);
+      EXPECT_NEAR(p.opl, Eta * fromLight, 1e-4 * (1.0 + fromLight));
+      EXPECT_GT(dot(p.direction, normalize(p.origin - Light)), 0.9999f);
     } else {
       ASSERT_EQ(p.depth, 2);
       ++second;
       // One vertex and its delay behind it, this vertex's delay not yet.
-      EXPECT_GE(p.opl, kEta * fromLight + kDelay - 1e-4);
+      EXPECT_GE(p.opl, Eta * fromLight + Delay - 1e-4);
     }
   }
   EXPECT_EQ(first, int(n));
@@ -121,7 +121,7 @@ TEST(TransientBeamsPoints, RadiusShrinksLikeA2DKernel) {
 
 TEST(TransientBeamsPoints, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   // Points uniform in a cube: a segment of the cube's side meets about
-  // kTargetPairHits of them within the derived radius r = sqrt(H V^(2/3) / (pi P)).
+  // TargetPairHits of them within the derived radius r = sqrt(H V^(2/3) / (pi P)).
   PCG32 rng(5, 1);
   auto point = [&] { return Point3f(2.0f * rng.nextFloat(), 2.0f * rng.nextFloat(), 2.0f * rng.nextFloat()); };
   std::vector<Beam> points(20000);
@@ -130,7 +130,7 @@ TEST(TransientBeamsPoints, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   s.volumeEstimator = VolumeEstimator::Points;
   // A large scene: the cap (1 % of its diagonal) stays out of the way.
   BeamSettings resolved = s.withBeamRadiusFrom(points, BoundingBox3f(Point3f(-10.0f), Point3f(12.0f)));
-  EXPECT_NEAR(resolved.radius, std::sqrt(BeamSettings::kTargetPairHits * 4.0 / (Pi * 20000.0)), 2e-3);
+  EXPECT_NEAR(resolved.radius, std::sqrt(BeamSettings::TargetPairHits * 4.0 / (Pi * 20000.0)), 2e-3);
   double hits = 0.0;
   const int segments = 400;
   for (int i = 0; i < segments; ++i) {
@@ -143,7 +143,7 @@ TEST(TransientBeamsPoints, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   }
   const double perSegment = hits / segments;
   std::printf("derived point radius %g: %.1f pairs per segment (target %g)\n", resolved.radius, perSegment,
-              BeamSettings::kTargetPairHits);
-  EXPECT_GT(perSegment, 0.4 * BeamSettings::kTargetPairHits);
-  EXPECT_LT(perSegment, 1.2 * BeamSettings::kTargetPairHits);
+              BeamSettings::TargetPairHits);
+  EXPECT_GT(perSegment, 0.4 * BeamSettings::TargetPairHits);
+  EXPECT_LT(perSegment, 1.2 * BeamSettings::TargetPairHits);
 }

@@ -24,7 +24,7 @@ using namespace femto::test;
 
 namespace {
 
-const std::filesystem::path kFogBox = std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml";
+const std::filesystem::path FogBox = std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml";
 
 /// The shipped fog Cornell box, small. `extra` are further -D overrides,
 /// e.g. transient_beams' photon_count (integrator-transient_beams.xml), so
@@ -37,7 +37,7 @@ std::shared_ptr<Scene> fogBox(const std::string& integrator, int spp, int bins,
   options.defines = {{"integrator", integrator}, {"resolution", "16"}, {"spp", std::to_string(spp)},
                      {"bins", std::to_string(bins)}, {"bin_width", std::to_string(10.24 / bins)}};
   for (const auto& [name, value] : extra) options.defines[name] = value;
-  return loadScene(kFogBox, options);
+  return loadScene(FogBox, options);
 }
 
 }  // namespace
@@ -50,7 +50,7 @@ TEST(TransientBeamsRender, FogCornellBoxAgreesWithTransientPath) {
   auto beams = fogBox("transient_beams", 1, 8, {{"photon_count", "25000"}});
   auto path = fogBox("transient_path", 64, 8);
   std::vector<Mean> b = imageSums(beams, "beams-fog", 6), p = imageSums(path, "path-fog", 6);
-  expectAgree(b, p, "fog box", kKernelBias);
+  expectAgree(b, p, "fog box", KernelBias);
 }
 
 TEST(TransientBeamsRender, FogCornellBoxPhotonPointsAgreeWithBeams) {
@@ -78,7 +78,7 @@ TEST(TransientBeamsRender, FogCornellBoxPhotonPointsAgreeWithBeams) {
                 k + 1 == b[0].size() ? "steady" : str("bin ", k).c_str(), difference.mean(),
                 difference.standardError(), reference.mean());
     EXPECT_NEAR(difference.mean(), 0.0,
-                5.0 * difference.standardError() + kKernelBias * std::abs(reference.mean()) + 1e-6)
+                5.0 * difference.standardError() + KernelBias * std::abs(reference.mean()) + 1e-6)
         << (k + 1 == b[0].size() ? "steady" : str("bin ", k));
   }
 }
@@ -102,7 +102,7 @@ TEST(TransientBeamsRender, VolumeTimeIntegralIsTheSteadyImage) {
   options.strict = true;
   options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "2"}, {"bins", "16"},
                      {"start", "0"}, {"bin_width", "2.5"}};
-  auto scene = loadScene(kFogBox, options);
+  auto scene = loadScene(FogBox, options);
   Rendered r = render(scene, dir / "fog.exr", 3);
   Bitmap before = readImage(dir / "fog_before.exr"), after = readImage(dir / "fog_after.exr");
   double total = 0.0;
@@ -140,7 +140,7 @@ std::string roomWithoutMedia(const std::string& integrator, int spp, const std::
 </scene>)");
 }
 
-const char* kSmallTransientFilm = R"(<film type="transient"><integer name="width" value="12"/><integer name="height" value="12"/>
+const char* SmallTransientFilm = R"(<film type="transient"><integer name="width" value="12"/><integer name="height" value="12"/>
       <integer name="temporal_bins" value="6"/><float name="start_opl" value="0"/><float name="bin_width_opl" value="3"/>
       <rfilter type="box"/></film>)";
 
@@ -149,17 +149,17 @@ const char* kSmallTransientFilm = R"(<film type="transient"><integer name="width
 TEST(TransientBeamsRender, SceneWithoutMediaAgreesWithTransientPath) {
   // The emitter seen directly and in the mirror dominates early bins: enough
   // camera samples that pixel coverage noise does not swamp the comparison.
-  auto beams = loadSceneStrict(roomWithoutMedia("transient_beams", 32, kSmallTransientFilm));
-  auto path = loadSceneStrict(roomWithoutMedia("transient_path", 64, kSmallTransientFilm));
+  auto beams = loadSceneStrict(roomWithoutMedia("transient_beams", 32, SmallTransientFilm));
+  auto path = loadSceneStrict(roomWithoutMedia("transient_path", 64, SmallTransientFilm));
   std::vector<Mean> b = imageSums(beams, "beams-room", 6), p = imageSums(path, "path-room", 6);
-  expectAgree(b, p, "room", kKernelBias);
+  expectAgree(b, p, "room", KernelBias);
 }
 
 TEST(TransientBeamsRender, SteadyFilmAgreesWithTransientFilmIntegral) {
   // The same integrator on an hdrfilm: the steady render path (renderSteadyPasses).
   const char* steadyFilm = R"(<film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="12"/>
       <rfilter type="box"/></film>)";
-  auto transient = loadSceneStrict(roomWithoutMedia("transient_beams", 4, kSmallTransientFilm));
+  auto transient = loadSceneStrict(roomWithoutMedia("transient_beams", 4, SmallTransientFilm));
   auto steady = loadSceneStrict(roomWithoutMedia("transient_beams", 4, steadyFilm));
   std::vector<Mean> t = imageSums(transient, "beams-room-t", 4), s = imageSums(steady, "beams-room-s", 4);
   std::vector<Mean> tSteady{t.back()}, sSteady{s.back()};
@@ -188,7 +188,7 @@ std::string foggyRoom(const std::string& integratorParams) {
 </scene>)");
 }
 
-const char* kBeamParams = R"(<integer name="photon_count" value="3000"/><float name="radius" value="0.05"/>
+const char* BeamParams = R"(<integer name="photon_count" value="3000"/><float name="radius" value="0.05"/>
     <float name="surface_radius" value="0.1"/><float name="alpha" value="0.5"/>)";
 
 }  // namespace
@@ -212,11 +212,11 @@ void expectSameOnOneAndTwoThreads(const std::string& params, const std::string& 
 }  // namespace
 
 TEST(TransientBeamsRender, OutputDoesNotDependOnTheThreadCount) {
-  expectSameOnOneAndTwoThreads(str(kBeamParams, R"(<integer name="passes" value="2"/>)"), "beams-threads");
+  expectSameOnOneAndTwoThreads(str(BeamParams, R"(<integer name="passes" value="2"/>)"), "beams-threads");
 }
 
 TEST(TransientBeamsRender, PhotonPointsOutputDoesNotDependOnTheThreadCount) {
-  expectSameOnOneAndTwoThreads(str(kBeamParams, R"(<integer name="passes" value="2"/>
+  expectSameOnOneAndTwoThreads(str(BeamParams, R"(<integer name="passes" value="2"/>
     <string name="volume_estimator" value="points"/>)"), "points-threads");
 }
 
@@ -224,8 +224,8 @@ TEST(TransientBeamsRender, PassesAverageIntoTheFilmWithShrinkingRadii) {
   // Two passes (radius r, then alpha r; surface radius sqrt(alpha) r_s) equal
   // the mean of the two one-pass renders that use those radii and seeds.
   auto dir = scratchDir("beams-passes");
-  auto twoPasses = loadSceneStrict(foggyRoom(str(kBeamParams, R"(<integer name="passes" value="2"/>)")));
-  auto first = loadSceneStrict(foggyRoom(kBeamParams));
+  auto twoPasses = loadSceneStrict(foggyRoom(str(BeamParams, R"(<integer name="passes" value="2"/>)")));
+  auto first = loadSceneStrict(foggyRoom(BeamParams));
   auto second = loadSceneStrict(foggyRoom(str(R"(<integer name="photon_count" value="3000"/>
     <float name="radius" value=")", 0.05f * 0.5f, R"("/><float name="surface_radius" value=")", 0.1f * std::sqrt(0.5f),
                                               R"("/>)")));
@@ -273,7 +273,7 @@ TEST(TransientBeamsRender, ShippedFogCornellBoxRendersWithTransientBeams) {
   options.strict = true;
   options.defines = {{"integrator", "transient_beams"}, {"resolution", "8"}, {"spp", "1"}, {"bins", "32"},
                      {"bin_width", "0.32"}};
-  auto scene = loadScene(kFogBox, options);
+  auto scene = loadScene(FogBox, options);
   Rendered r = render(scene, dir / "fog.exr", 1);
   ASSERT_EQ(r.bins, 32);
   double total = 0.0;

@@ -62,19 +62,19 @@ std::string sceneXml(const BeamsCase& s, bool beams) {
 }
 
 /// Both integrators on `s`: per bin and steady, within 5 sigma of the runs'
-/// spread plus the kernels' bias allowance (kKernelBias).
+/// spread plus the kernels' bias allowance (KernelBias).
 void expectBeamsAgreeWithPath(const BeamsCase& s, const std::string& name) {
   auto beams = loadSceneStrict(sceneXml(s, true), s.dir), path = loadSceneStrict(sceneXml(s, false), s.dir);
   std::vector<Mean> b = imageSums(beams, "beams-" + name, s.runs), p = imageSums(path, "path-" + name, s.runs);
   double total = 0.0;
   for (const Mean& m : p) total += m.mean();
   ASSERT_GT(total, 0.0) << "the scene is lit";
-  expectAgree(b, p, name.c_str(), kKernelBias);
+  expectAgree(b, p, name.c_str(), KernelBias);
 }
 
-const char* kFog = R"(<medium type="homogeneous" id="fog"><float name="sigma_t" value="0.4"/>
+const char* Fog = R"(<medium type="homogeneous" id="fog"><float name="sigma_t" value="0.4"/>
     <float name="albedo" value="0.8"/></medium>)";
-const char* kPointLight = R"(<emitter type="point"><point name="position" x="0.5" y="1.7" z="1"/>
+const char* PointLightElement = R"(<emitter type="point"><point name="position" x="0.5" y="1.7" z="1"/>
     <float name="intensity" value="3"/></emitter>)";
 
 /// A Mitsuba .vol density grid (float32, one channel) on the room's box
@@ -113,7 +113,7 @@ TEST(TransientBeamsScenes, HeterogeneousMediumAgreesWithTransientPath) {
   s.pathSpp = 256;
   s.content = str(R"(<medium type="heterogeneous" id="fog">
     <volume name="sigma_t" type="gridvolume"><string name="filename" value="density.vol"/></volume>
-    <float name="scale" value="0.6"/><float name="albedo" value="0.8"/></medium>)", kPointLight);
+    <float name="scale" value="0.6"/><float name="albedo" value="0.8"/></medium>)", PointLightElement);
   expectBeamsAgreeWithPath(s, "grid");
 }
 
@@ -127,7 +127,7 @@ TEST(TransientBeamsScenes, AreaLightPhotonsAgreeWithTransientPath) {
   s.shared = R"(<boolean name="hide_emitters" value="true"/>)";
   s.beamSpp = 4;
   s.pathSpp = 256;
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <shape type="rectangle"><transform name="to_world"><scale value="0.6"/><rotate x="1" angle="90"/>
       <translate x="-0.5" y="1.6" z="-0.5"/></transform><ref name="exterior" id="fog"/>
     <emitter type="area"><rgb name="radiance" value="3, 2.5, 2"/></emitter></shape>
@@ -140,7 +140,7 @@ TEST(TransientBeamsScenes, SpotAndProjectorPhotonsAgreeWithTransientPath) {
   // Oriented point lights: a spot's cone (falloff between beam_width and the
   // cutoff) and a projector's frustum light the fog and the walls.
   BeamsCase s;
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <emitter type="spot"><transform name="to_world"><lookat origin="-1, 1.5, 0" target="0, -2, -0.5"/></transform>
     <float name="intensity" value="20"/><float name="cutoff_angle" value="25"/><float name="beam_width" value="15"/></emitter>
   <emitter type="projector"><transform name="to_world"><lookat origin="1.5, 0, -1" target="-2, 0.5, -1"/></transform>
@@ -154,7 +154,7 @@ BeamsCase fogCubeOnAFloor(const std::string& emitter) {
   BeamsCase s;
   s.room = s.foggyRoom = false;
   s.sensor = R"(<transform name="to_world"><lookat origin="0.5, 1.5, 4" target="0, -0.3, 0" up="0, 1, 0"/></transform>)";
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <shape type="cube"><ref name="interior" id="fog"/></shape>
   <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/>
       <translate y="-1.5"/></transform><bsdf type="diffuse"><float name="reflectance" value="0.6"/></bsdf></shape>
@@ -186,7 +186,7 @@ TEST(TransientBeamsScenes, HiddenEmittersAgreeWithTransientPath) {
   // the fog), not its reflection in the mirror sphere nor the light it casts.
   BeamsCase s;
   s.shared = R"(<boolean name="hide_emitters" value="true"/>)";
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <shape type="sphere"><point name="center" x="-0.5" y="0.8" z="0"/><float name="radius" value="0.35"/>
     <bsdf type="diffuse"><float name="reflectance" value="0.5"/></bsdf><emitter type="area"><rgb name="radiance" value="4, 5, 6"/></emitter></shape>
   <shape type="sphere"><point name="center" x="0.6" y="-1.2" z="0"/><float name="radius" value="0.6"/>
@@ -205,7 +205,7 @@ TEST(TransientBeamsScenes, MediumInsideGlassNestedInFogAgreesWithTransientPath) 
   s.beamSpp = 4;
   s.pathSpp = 256;
   s.runs = 10;  // sees photons that keep the fog's medium inside the glass (steady image 13 % too dark)
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <medium type="homogeneous" id="inner"><float name="sigma_t" value="2"/><float name="albedo" value="0.9"/>
     <float name="eta" value="1.5"/></medium>
   <shape type="sphere"><point name="center" x="0" y="-0.5" z="-0.4"/><float name="radius" value="1.1"/>
@@ -226,7 +226,7 @@ TEST(TransientBeamsScenes, PhaseDelaysAgreeWithTransientPath) {
   s.binWidth = 1.5;
   s.content = str(R"(<medium type="homogeneous" id="fog"><float name="sigma_t" value="0.4"/>
     <float name="albedo" value="0.8"/><phase type="hg"><float name="g" value="0.4"/>
-    <float name="delay" value="1"/><float name="lifetime" value="0.8"/></phase></medium>)", kPointLight);
+    <float name="delay" value="1"/><float name="lifetime" value="0.8"/></phase></medium>)", PointLightElement);
   expectBeamsAgreeWithPath(s, "delays");
 }
 
@@ -244,7 +244,7 @@ TEST(TransientBeamsScenes, WallDelaysAgreeWithTransientPath) {
   s.bins = 10;
   s.start = 5.0;
   s.binWidth = 1.0;
-  s.content = kPointLight;
+  s.content = PointLightElement;
   expectBeamsAgreeWithPath(s, "wall-delays");
 }
 
@@ -253,7 +253,7 @@ TEST(TransientBeamsScenes, GaussianAndBoxPulsesAgreeWithTransientPath) {
   // a gaussian point light late by 4 and an area sphere emitting over [0, 2],
   // so light credited to the wrong emitter lands bins away.
   BeamsCase s;
-  s.content = str(kFog, R"(
+  s.content = str(Fog, R"(
   <emitter type="point"><point name="position" x="0.5" y="1.7" z="1"/><float name="intensity" value="3"/>
     <string name="pulse" value="gaussian"/><float name="pulse_sigma" value="0.5"/><float name="pulse_offset" value="4"/></emitter>
   <shape type="sphere"><point name="center" x="-0.8" y="-1" z="-0.6"/><float name="radius" value="0.3"/>
@@ -267,11 +267,11 @@ TEST(TransientBeamsScenes, ContinuousEmissionIsTheRunningIntegralOfTheDiracRende
   // and camera samples: a continuously emitting light's bins must lie between
   // the running integrals of the Dirac render's bins (continuous_pulse_check.h).
   BeamsCase s;
-  s.content = std::string(kFog) + kPointLight;
+  s.content = std::string(Fog) + PointLightElement;
   std::string continuousLight = R"(<emitter type="point"><point name="position" x="0.5" y="1.7" z="1"/>
     <float name="intensity" value="3"/><string name="pulse" value="continuous"/></emitter>)";
   BeamsCase c = s;
-  c.content = std::string(kFog) + continuousLight;
+  c.content = std::string(Fog) + continuousLight;
   auto dir = scratchDir("beams-continuous");
   Rendered dirac = render(loadSceneStrict(sceneXml(s, true)), dir / "dirac.exr", 9);
   Rendered continuous = render(loadSceneStrict(sceneXml(c, true)), dir / "cont.exr", 9);

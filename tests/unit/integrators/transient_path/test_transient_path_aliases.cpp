@@ -63,7 +63,7 @@ void render(const std::string& xml, const std::filesystem::path& out) {
   ASSERT_TRUE(scene->integrator().render(*scene, options).completed);
 }
 
-const std::string kParameters = R"(<integer name="max_depth" value="5"/><integer name="rr_depth" value="3"/>
+const std::string Parameters = R"(<integer name="max_depth" value="5"/><integer name="rr_depth" value="3"/>
   <boolean name="camera_unwarp" value="False"/><string name="temporal_filter" value="gaussian"/>
   <float name="gaussian_stddev" value="1.5"/>)";
 
@@ -71,9 +71,9 @@ const std::string kParameters = R"(<integer name="max_depth" value="5"/><integer
 
 TEST(TransientPathAliases, PrbVolpathAndTransientpathEqualTransientPathBitwise) {
   auto dir = test::scratchDir("transient-path-aliases");
-  render(fogScene("<integrator type=\"transient_path\">" + kParameters + "</integrator>"), dir / "path.exr");
-  render(fogScene("<integrator type=\"transient_prbvolpath\">" + kParameters + "</integrator>"), dir / "prb.exr");
-  render(fogScene("<integrator type=\"transientpath\">" + kParameters + "</integrator>"), dir / "old.exr");
+  render(fogScene("<integrator type=\"transient_path\">" + Parameters + "</integrator>"), dir / "path.exr");
+  render(fogScene("<integrator type=\"transient_prbvolpath\">" + Parameters + "</integrator>"), dir / "prb.exr");
+  render(fogScene("<integrator type=\"transientpath\">" + Parameters + "</integrator>"), dir / "old.exr");
   std::string reference = fileBytes(dir / "path.npy");
   ASSERT_GT(reference.size(), 12u * 12u * 30u * 3u * 4u);
   EXPECT_TRUE(reference == fileBytes(dir / "prb.npy")) << "transient_prbvolpath's volume differs from transient_path's";

@@ -51,13 +51,13 @@ std::string foggyScene(const std::string& film, int spp) {
 </scene>)";
 }
 
-const char* kTransientFilm = R"(<film type="transient">
+const char* TransientFilmElement = R"(<film type="transient">
       <integer name="width" value="20"/><integer name="height" value="20"/>
       <integer name="temporal_bins" value="128"/>
       <float name="start_opl" value="0"/><float name="bin_width_opl" value="1"/>
       <rfilter type="box"/>
     </film>)";
-const char* kSteadyFilm = R"(<film type="hdrfilm">
+const char* SteadyFilm = R"(<film type="hdrfilm">
       <integer name="width" value="20"/><integer name="height" value="20"/>
       <rfilter type="box"/>
     </film>)";
@@ -80,7 +80,7 @@ Bitmap renderTo(const std::string& xml, const std::filesystem::path& out, uint64
 
 TEST(TransientPathFilm, TimeIntegralOfTheVolumeIsTheSteadyImageOfTheSameSamples) {
   auto dir = test::scratchDir("transient-path-film");
-  Bitmap steady = renderTo(foggyScene(kTransientFilm, 8), dir / "fog.exr", 1);
+  Bitmap steady = renderTo(foggyScene(TransientFilmElement, 8), dir / "fog.exr", 1);
   Bitmap after = readImage(dir / "fog_after.exr");
   Bitmap before = readImage(dir / "fog_before.exr");
   int h = 0, w = 0, bins = 0;
@@ -118,8 +118,8 @@ TEST(TransientPathFilm, TimeIntegralAgreesWithAnIndependentSteadyRender) {
   // 1024 spp over 400 pixels puts the standard error of the mean difference
   // near 1 % of the image level (heavy-tailed: fog paths that find the small
   // light), so 5 sigma catches a bias above ~6 % (checked: a 10 % error fails).
-  Bitmap transientSteady = renderTo(foggyScene(kTransientFilm, 1024), dir / "t.exr", 7);
-  Bitmap steady = renderTo(foggyScene(kSteadyFilm, 1024), dir / "s.exr", 12345);
+  Bitmap transientSteady = renderTo(foggyScene(TransientFilmElement, 1024), dir / "t.exr", 7);
+  Bitmap steady = renderTo(foggyScene(SteadyFilm, 1024), dir / "s.exr", 12345);
   // Per-pixel differences of two independent unbiased estimates have mean 0;
   // test the mean difference against its standard error (5 sigma).
   for (int c = 0; c < 3; ++c) {

@@ -17,17 +17,17 @@ using namespace femto::test;
 
 namespace {
 
-const float kSigmaS = 0.6f, kSigmaA = 0.2f, kSigmaT = kSigmaS + kSigmaA;
-const Point3f kLight(0.8f, 0.0f, 1.0f);
-const float kIntensity = 2.0f;
+const float SigmaS = 0.6f, SigmaA = 0.2f, SigmaT = SigmaS + SigmaA;
+const Point3f Light(0.8f, 0.0f, 1.0f);
+const float Intensity = 2.0f;
 
 /// Camera at the origin inside an unbounded homogeneous medium lit by a point
 /// light; max_depth = 2 keeps only single scattering.
 std::shared_ptr<Scene> singleScatteringScene(const std::string& phaseParams = "") {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path"><integer name="max_depth" value="2"/></integrator>
-  <medium id="m" type="homogeneous"><float name="sigma_s" value=")", kSigmaS, R"("/><float name="sigma_a" value=")",
-                             kSigmaA, R"("/><phase type="isotropic">)", phaseParams, R"(</phase></medium>
+  <medium id="m" type="homogeneous"><float name="sigma_s" value=")", SigmaS, R"("/><float name="sigma_a" value=")",
+                             SigmaA, R"("/><phase type="isotropic">)", phaseParams, R"(</phase></medium>
   <sensor type="perspective"><ref id="m"/></sensor>
   <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
 </scene>)"));
@@ -40,7 +40,7 @@ TEST(TransientPathMedia, SingleScatteringOplHistogramMatchesClosedForm) {
   const TransientIntegrator& integrator = transientIntegrator(*scene);
   for (Vec3f d : {normalize(Vec3f(0.3f, 0.1f, 1.0f)), normalize(Vec3f(-1.0f, 0.5f, -0.2f))}) {
     SCOPED_TRACE(str("direction ", d));
-    SingleScattering model{d, kLight, kIntensity, kSigmaS, kSigmaT};
+    SingleScattering model{d, Light, Intensity, SigmaS, SigmaT};
     const double tau0 = model.tau(0.0), width = 6.0;
     const int bins = 24, n = 200000;
     std::vector<Mean> histogram(bins);
@@ -84,20 +84,20 @@ TEST(TransientPathMedia, SingleScatteringPastAPointLightHasBoundedVariance) {
   // estimate nearly constant along such a ray: its relative second moment is
   // 1 plus the spread of T(t) T(r) over the sampled angles, well below 2.
   auto scene = singleScatteringScene();
-  Vec3f side = normalize(cross(Vec3f(kLight), Vec3f(0.0f, 1.0f, 0.0f)));
-  Vec3f d = normalize(Vec3f(kLight) + 1e-3f * side);
-  ASSERT_NEAR(length(cross(Vec3f(kLight), d)), 1e-3, 2e-5) << "distance from the light to the ray";
+  Vec3f side = normalize(cross(Vec3f(Light), Vec3f(0.0f, 1.0f, 0.0f)));
+  Vec3f d = normalize(Vec3f(Light) + 1e-3f * side);
+  ASSERT_NEAR(length(cross(Vec3f(Light), d)), 1e-3, 2e-5) << "distance from the light to the ray";
   // The closed form's Simpson rule in s (step 0.01) cannot resolve a peak of
   // width D: integrate in the angle theta seen from the light instead
   // (s = delta + D tan theta, ds / l^2 = dtheta / D), where the integrand
   // sigma_s / (4 pi) I exp(-sigma_t (s + l)) / D is smooth.
-  const double delta = dot(Vec3f(kLight), d), height = length(cross(Vec3f(kLight), d));
+  const double delta = dot(Vec3f(Light), d), height = length(cross(Vec3f(Light), d));
   const double thetaA = std::atan2(-delta, height), thetaB = std::atan2(1.0, 0.0);
   auto integrand = [&](double theta) {
     double c = std::cos(theta);
     if (c <= 0.0) return 0.0;
     double sAlong = delta + height * std::tan(theta), l = height / c;
-    return kSigmaS * Inv4Pi * kIntensity * std::exp(-kSigmaT * (sAlong + l)) / height;
+    return SigmaS * Inv4Pi * Intensity * std::exp(-SigmaT * (sAlong + l)) / height;
   };
   const int steps = 20000;  // Simpson, even
   double h = (thetaB - thetaA) / steps, expected = integrand(thetaA) + integrand(thetaB);

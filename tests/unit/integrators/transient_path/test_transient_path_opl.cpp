@@ -15,9 +15,9 @@ using namespace femto::test;
 
 namespace {
 
-const Point3f kLight(0.5f, -0.3f, 2.0f);
-const Color3f kIntensity(1.0f, 2.0f, 3.0f);
-const Color3f kRho(0.2f, 0.5f, 0.8f);
+const Point3f Light(0.5f, -0.3f, 2.0f);
+const Color3f Intensity(1.0f, 2.0f, 3.0f);
+const Color3f Rho(0.2f, 0.5f, 0.8f);
 
 std::shared_ptr<Scene> planeScene(const std::string& integratorParams, const std::string& extra = "",
                                   const std::string& bsdfParams = "") {
@@ -33,8 +33,8 @@ std::shared_ptr<Scene> planeScene(const std::string& integratorParams, const std
 
 /// Radiance the plane reflects at x toward any viewer: rho / pi * I cos(theta) / d^2.
 Color3f planeRadiance(const Point3f& x) {
-  float d = distance(kLight, x);
-  return kRho * InvPi * kIntensity * (kLight.z / d) / (d * d);
+  float d = distance(Light, x);
+  return Rho * InvPi * Intensity * (Light.z / d) / (d * d);
 }
 
 }  // namespace
@@ -52,7 +52,7 @@ TEST(TransientPathOPL, PointLightOverPlaneIsExact) {
       CollectingRecorder recorder;
       transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, recorder);
       ASSERT_EQ(recorder.hits.size(), 1u) << "next-event estimation is the only contribution";
-      double expectedOpl = distance(kLight, x) + (observerTime ? distance(x, camera) : 0.0f);
+      double expectedOpl = distance(Light, x) + (observerTime ? distance(x, camera) : 0.0f);
       EXPECT_NEAR(recorder.hits[0].first, expectedOpl, 1e-5 * expectedOpl);
       Color3f expected = planeRadiance(x);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(recorder.hits[0].second[c], expected[c], 1e-5f * expected[c]);
@@ -65,7 +65,7 @@ TEST(TransientPathOPL, PointLightOverPlaneIsExact) {
 TEST(TransientPathOPL, BsdfScatteringDelayShiftsTheReflectedLight) {
   const Point3f camera(1.0f, 2.0f, 3.0f), x(0.2f, 0.4f, 0.0f);
   const Ray ray(camera, normalize(x - camera));
-  const double undelayed = distance(kLight, x) + distance(x, camera);
+  const double undelayed = distance(Light, x) + distance(x, camera);
   auto constant = planeScene("", "", R"(<float name="delay" value="0.3"/>)");
   auto sampler = seededSampler(4);
   CollectingRecorder once;
@@ -107,7 +107,7 @@ TEST(TransientPathOPL, HorizonStopsPaths) {
   auto scene = planeScene("");
   auto sampler = seededSampler(4);
   const Point3f camera(1.0f, 2.0f, 3.0f), x(0.2f, 0.4f, 0.0f);
-  double opl = distance(kLight, x) + distance(x, camera);
+  double opl = distance(Light, x) + distance(x, camera);
   CollectingRecorder before(opl * 0.999), after(opl * 1.001);
   transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, before);
   transientIntegrator(*scene).sample(*scene, Ray(camera, normalize(x - camera)), *sampler, after);
@@ -156,7 +156,7 @@ std::shared_ptr<Shape> rectangle(const Transform& toWorld, std::shared_ptr<BSDF>
 /// thickness h (z in [-h, 0]) when eta > 0, or without the slab.
 std::shared_ptr<Scene> slabScene(float eta, float h) {
   Properties diffuseProps("diffuse");
-  diffuseProps.setColor("reflectance", kRho);
+  diffuseProps.setColor("reflectance", Rho);
   auto diffuse = makePlugin<BSDF>(ObjectKind::BSDF, diffuseProps);
   Properties scene("scene");
   scene.setObject("floor", rectangle(Transform::translate(Vec3f(0, 0, -3)) * Transform::scale(Vec3f(20.0f)), diffuse));
@@ -167,7 +167,7 @@ std::shared_ptr<Scene> slabScene(float eta, float h) {
   }
   Properties light("point");
   light.setPoint("position", Point3f(0.8f, 0.0f, -2.0f));
-  light.setColor("intensity", kIntensity);
+  light.setColor("intensity", Intensity);
   scene.setObject("light", makePlugin<Emitter>(ObjectKind::Emitter, light));
   scene.setObject("integrator", makePlugin<Integrator>(ObjectKind::Integrator, Properties("transient_path")));
   return std::make_shared<Scene>(scene);
@@ -213,7 +213,7 @@ TEST(TransientPathOPL, MediumIndexScalesTheOplAndAbsorptionAttenuates) {
   // would be absorbed, with probability 1 - exp(-sigma_a |x - camera|)); the
   // light segment's transmittance is computed in closed form.
   auto sampler = seededSampler(8);
-  double cameraDistance = distance(x, camera), lightDistance = distance(kLight, x);
+  double cameraDistance = distance(x, camera), lightDistance = distance(Light, x);
   Color3f expected = planeRadiance(x) * std::exp(-sigmaA * float(lightDistance));
   Mean reached;
   for (int i = 0; i < 20000; ++i) {
@@ -250,7 +250,7 @@ TEST(TransientPathOPL, DielectricSlabDelaysTransmittedLight) {
   const Ray ray(Point3f(0, 0, 2), Vec3f(0, 0, -1));
   const Point3f floor(0, 0, -3), light(0.8f, 0.0f, -2.0f);
   float d = distance(light, floor);
-  Color3f vacuum = kRho * InvPi * kIntensity * ((light.z - floor.z) / d) / (d * d);
+  Color3f vacuum = Rho * InvPi * Intensity * ((light.z - floor.z) / d) / (d * d);
   double expectedOpl = 5.0 + (eta - 1.0) * h + d;
   float R = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
   auto sampler = seededSampler(10);

@@ -29,7 +29,7 @@ using namespace femto;
 
 namespace {
 
-constexpr int kSize = 8;
+constexpr int Size = 8;
 
 /// A diffuse floor and back wall lit by a point light, a spherical area light
 /// and a dim constant environment, each emitting with `pulse` (XML
@@ -65,8 +65,8 @@ std::string scene(const std::string& pulse, const std::string& film, int spp = 4
 }
 
 std::string transientFilm(double start, double binWidth, int bins, const std::string& extra = "") {
-  return str(R"(<film type="transient"><integer name="width" value=")", kSize, R"("/><integer name="height" value=")",
-             kSize, R"("/><integer name="temporal_bins" value=")", bins, R"("/><float name="start_opl" value=")", start,
+  return str(R"(<film type="transient"><integer name="width" value=")", Size, R"("/><integer name="height" value=")",
+             Size, R"("/><integer name="temporal_bins" value=")", bins, R"("/><float name="start_opl" value=")", start,
              R"("/><float name="bin_width_opl" value=")", binWidth, R"("/><boolean name="write_frames" value="false"/>)",
              extra, "</film>");
 }
@@ -80,7 +80,7 @@ struct Render {
   std::vector<float> volume;
   int bins = 0;
   Bitmap steady, before, after;
-  float v(int x, int y, int b, int c) const { return volume[((size_t(y) * kSize + x) * bins + b) * 3 + c]; }
+  float v(int x, int y, int b, int c) const { return volume[((size_t(y) * Size + x) * bins + b) * 3 + c]; }
 };
 
 Render render(const std::string& xml, const std::string& name, int threads = 0) {
@@ -111,8 +111,8 @@ void expectClose(double a, double b, double scale, const std::string& what) {
 
 double imageScale(const Render& r) {
   double m = 0.0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x)
+  for (int y = 0; y < Size; ++y)
+    for (int x = 0; x < Size; ++x)
       for (int c = 0; c < 3; ++c) m = std::max(m, double(r.steady.pixel(x, y)[c]));
   return m;
 }
@@ -131,8 +131,8 @@ TEST(TransientPathPulses, GaussianPulseIsTheDiracRenderConvolvedWithTheGaussian)
   const double scale = imageScale(dirac);
   ASSERT_GT(scale, 0.0);
   double arrived = 0.0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x)
+  for (int y = 0; y < Size; ++y)
+    for (int x = 0; x < Size; ++x)
       for (int c = 0; c < 3; ++c) {
         expectClose(pulsed.steady.pixel(x, y)[c], dirac.steady.pixel(x, y)[c], scale, "steady: pulses are normalised");
         expectClose(pulsed.before.pixel(x, y)[c], dirac.before.pixel(x, y)[c], scale, "before");
@@ -162,8 +162,8 @@ TEST(TransientPathPulses, BoxPulseLiesWithinTheBoundsOfTheFineDiracRenderConvolv
     return std::max(0.0, std::min(hi, t + o + w) - std::max(lo, t + o)) / w;
   };
   int tight = 0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x)
+  for (int y = 0; y < Size; ++y)
+    for (int x = 0; x < Size; ++x)
       for (int c = 0; c < 3; ++c) {
         expectClose(pulsed.steady.pixel(x, y)[c], fine.steady.pixel(x, y)[c], scale, "steady");
         for (int b = 0; b < bins; ++b) {
@@ -180,7 +180,7 @@ TEST(TransientPathPulses, BoxPulseLiesWithinTheBoundsOfTheFineDiracRenderConvolv
           tight += upper - lower < 0.1 * std::max(upper, 1e-3 * scale);
         }
       }
-  EXPECT_GT(tight, kSize * kSize * 3 * bins / 2) << "the bounds must be narrow enough to mean something";
+  EXPECT_GT(tight, Size * Size * 3 * bins / 2) << "the bounds must be narrow enough to mean something";
 }
 
 TEST(TransientPathPulses, ContinuousEmissionIsTheRunningIntegralAndEndsAtTheSteadyImage) {
@@ -192,8 +192,8 @@ TEST(TransientPathPulses, ContinuousEmissionIsTheRunningIntegralAndEndsAtTheStea
   Render step = render(scene(pulseXml("continuous", ""), transientFilm(-8.0, 1.0, bins)), "continuous");
   Render dirac = render(scene("", transientFilm(-8.0, 1.0, bins)), "continuous-ref");
   const double scale = imageScale(dirac);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x)
+  for (int y = 0; y < Size; ++y)
+    for (int x = 0; x < Size; ++x)
       for (int c = 0; c < 3; ++c) {
         const double steady = step.steady.pixel(x, y)[c];
         expectClose(steady, dirac.steady.pixel(x, y)[c], scale, "steady");
@@ -202,7 +202,7 @@ TEST(TransientPathPulses, ContinuousEmissionIsTheRunningIntegralAndEndsAtTheStea
         expectClose(step.before.pixel(x, y)[c], dirac.before.pixel(x, y)[c], scale, "before: the level at the start");
         expectClose(step.v(x, y, bins - 1, c), steady, scale, "the last frame is the steady image");
       }
-  EXPECT_TRUE(test::isRunningIntegralOf(step.volume, dirac.volume, dirac.before, kSize, kSize, bins, scale));
+  EXPECT_TRUE(test::isRunningIntegralOf(step.volume, dirac.volume, dirac.before, Size, Size, bins, scale));
 }
 
 TEST(TransientPathPulses, PulsedRendersAreIndependentOfTheThreadCount) {

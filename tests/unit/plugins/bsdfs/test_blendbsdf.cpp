@@ -17,8 +17,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 3;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 3;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 std::shared_ptr<BSDF> phong(float exponent = 20.0f) {
   return makeBSDF("phong", [&](Properties& p) {
@@ -36,7 +36,7 @@ std::shared_ptr<BSDF> blend(std::shared_ptr<BSDF> first, std::shared_ptr<BSDF> s
   });
 }
 
-const std::vector<Vec3f> kDirections = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0.1f, 0.2f}, {-0.5f, 0.5f, 0.05f}};
+const std::vector<Vec3f> Directions = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0.1f, 0.2f}, {-0.5f, 0.5f, 0.05f}};
 
 }  // namespace
 
@@ -46,7 +46,7 @@ TEST(BlendBSDF, TwoDiffuseBSDFsHaveTheBlendedAlbedo) {
   auto bsdf = blend(makeDiffuse(rho0), makeDiffuse(rho1), t);
   EXPECT_EQ(bsdf->flags(), uint32_t(BSDFFlags::DiffuseReflection));
   const Color3f expected = rho0 * (1 - t) + rho1 * t;
-  for (const Vec3f& d : kDirections) {
+  for (const Vec3f& d : Directions) {
     SurfaceInteraction si = localInteraction(d);
     // Both terms sample the same cosine density, so every sample weighs exactly the blended albedo.
     AlbedoEstimate e = albedo(*bsdf, si, 4000);
@@ -106,14 +106,14 @@ TEST(BlendBSDF, SamplesMatchEvalAndPdf) {
     expectAlbedoAtMost(albedo(*bsdf, si, 40000), 1.0f);
     double smoothMass = 0.0;
     ChiSquareResult r = chiSquareSmoothLobes(*bsdf, si, smoothMass);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
   }
 }
 
 TEST(BlendBSDF, IsReciprocal) {
   auto bsdf = blend(makeDiffuse(Color3f(0.7f)), phong(8.0f), 0.6f);
-  for (const Vec3f& a : kDirections)
-    for (const Vec3f& b : kDirections) {
+  for (const Vec3f& a : Directions)
+    for (const Vec3f& b : Directions) {
       const Vec3f wi = normalize(a), wo = normalize(Vec3f(-b.x, b.y, b.z));
       const Color3f fio = bsdf->eval(localInteraction(wi), wo) / wo.z;
       const Color3f foi = bsdf->eval(localInteraction(wo), wi) / wi.z;

@@ -15,8 +15,8 @@ using namespace femto::test;
 namespace {
 
 // Chi-square tests in this file, for the Sidak correction.
-constexpr int kChiSquareTests = 2;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 2;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 std::shared_ptr<BSDF> makeDiffuse(const Color3f& reflectance) {
   Properties props("diffuse");
@@ -53,7 +53,7 @@ TEST(DiffuseBSDF, SamplingMatchesItsPdf) {
   };
   std::function<double(const Vec3f&)> pdf = [&](const Vec3f& wo) { return bsdf->pdf(si, wo); };
   ChiSquareResult r = testSampler<Vec3f>(sphericalDomain(24, 48), sample, pdf);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
 }
 
 TEST(DiffuseBSDF, SampleWeightIsEvalOverPdfAndEqualsTheReflectance) {
@@ -135,7 +135,7 @@ TEST(AreaEmitter, DirectionSamplingMatchesItsPdf) {
   };
   GridDomain<Vec3f> domain = sphericalDomain(36, 72);
   ChiSquareResult r = testSampler<Vec3f>(domain, sample, pdf, 1000000, 32);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   std::vector<double> cells = integrateCells<Vec3f>(domain, pdf, 32);
   EXPECT_NEAR(std::accumulate(cells.begin(), cells.end(), 0.0), 1.0, 2e-3);
 }

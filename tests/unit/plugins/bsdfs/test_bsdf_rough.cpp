@@ -61,11 +61,11 @@ SurfaceInteraction localInteraction(const Vec3f& wi) {
 }
 
 // Relative index of the roughdielectric default (bk7 in air).
-constexpr float kBk7 = 1.5046f / 1.000277f;
+constexpr float Bk7 = 1.5046f / 1.000277f;
 
 // Chi-square tests in this file, for the Sidak correction.
-constexpr int kChiSquareTests = 3 * 3 + 3 * 4 + 2 * 3;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 3 * 3 + 3 * 4 + 2 * 3;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 /// Chi-square test of bsdf.sample() against bsdf.pdf() over the sphere of
 /// outgoing directions; failed samples (pdf 0) are not counted. The theta
@@ -84,7 +84,7 @@ void expectSamplingMatchesPdf(const BSDF& bsdf, const Vec3f& wi, TransportMode m
   breaks.push_back(0.5 * Pi);  // the horizon
   ChiSquareResult r =
       testSamplerAllowingFailures<Vec3f>(sphericalDomainWithBreaks(breaks, 48, 96), sample, pdf, 200000, 6);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
 }
 
 /// Mean and standard error of the sample weights (f cos / pdf) of `n`
@@ -105,33 +105,33 @@ std::pair<double, double> albedo(const BSDF& bsdf, const Vec3f& wi, TransportMod
   return {mean, std::sqrt(variance / n)};
 }
 
-const RoughCase kConductors[] = {
+const RoughCase Conductors[] = {
     {"roughconductor", "beckmann", 0.2f, -1},
     {"roughconductor", "ggx", 0.1f, 0.4f},
     {"roughconductor", "ggx", 0.5f, -1, false},
 };
-const RoughCase kDielectrics[] = {
+const RoughCase Dielectrics[] = {
     {"roughdielectric", "beckmann", 0.2f, -1},
     {"roughdielectric", "ggx", 0.5f, 0.25f},
     {"roughdielectric", "beckmann", 0.4f, -1, false},
 };
-const RoughCase kPlastics[] = {
+const RoughCase Plastics[] = {
     {"roughplastic", "beckmann", 0.1f, -1},
     {"roughplastic", "ggx", 0.4f, -1},
 };
 
 std::vector<std::shared_ptr<BSDF>> allRoughBSDFs() {
   std::vector<std::shared_ptr<BSDF>> out;
-  for (const auto& c : kConductors) out.push_back(makeBSDF(c, [](Properties& p) { p.setString("material", "Au"); }));
-  for (const auto& c : kDielectrics) out.push_back(makeBSDF(c));
-  for (const auto& c : kPlastics) out.push_back(makeBSDF(c));
+  for (const auto& c : Conductors) out.push_back(makeBSDF(c, [](Properties& p) { p.setString("material", "Au"); }));
+  for (const auto& c : Dielectrics) out.push_back(makeBSDF(c));
+  for (const auto& c : Plastics) out.push_back(makeBSDF(c));
   return out;
 }
 
 }  // namespace
 
 TEST(RoughConductor, SamplingMatchesItsPdf) {
-  for (const RoughCase& c : kConductors)
+  for (const RoughCase& c : Conductors)
     for (const Vec3f& wi : {direction(0, 0), direction(45, 20), direction(85, 120)}) {
       SCOPED_TRACE(str(describe(c), " wi=", wi));
       expectSamplingMatchesPdf(*makeBSDF(c), wi);
@@ -141,14 +141,14 @@ TEST(RoughConductor, SamplingMatchesItsPdf) {
 namespace {
 
 void expectDielectricSamplingMatchesPdf(std::initializer_list<Vec3f> incident) {
-  for (const RoughCase& c : kDielectrics)
+  for (const RoughCase& c : Dielectrics)
     for (const Vec3f& wi : incident) {
       SCOPED_TRACE(str(describe(c), " wi=", wi));
       // Refraction through a microfacet with m.z > 0 needs wi.z + eta_t wo.z
       // < 0 (the generalised half vector points down): the refracted lobe
       // ends abruptly at wo.z = -wi.z / eta_t, where grazing microfacets
       // refract.
-      float etaT = wi.z > 0 ? kBk7 : 1.0f / kBk7;
+      float etaT = wi.z > 0 ? Bk7 : 1.0f / Bk7;
       std::vector<double> breaks;
       if (std::abs(wi.z / etaT) < 1.0f) breaks.push_back(std::acos(-wi.z / etaT));
       expectSamplingMatchesPdf(*makeBSDF(c), wi, wi.z > 0 ? TransportMode::Radiance : TransportMode::Importance,
@@ -168,7 +168,7 @@ TEST(RoughDielectric, SamplingMatchesItsPdfFromInside) {
 }
 
 TEST(RoughPlastic, SamplingMatchesItsPdf) {
-  for (const RoughCase& c : kPlastics)
+  for (const RoughCase& c : Plastics)
     for (const Vec3f& wi : {direction(0, 0), direction(40, 30), direction(85, 200)}) {
       SCOPED_TRACE(str(describe(c), " wi=", wi));
       expectSamplingMatchesPdf(*makeBSDF(c, [](Properties& p) { p.setColor("diffuse_reflectance", Color3f(0.3f)); }),
@@ -220,11 +220,11 @@ TEST(RoughBSDFs, AreReciprocal) {
       };
       float forward = f(wi, wo, TransportMode::Radiance), backward = f(wo, wi, TransportMode::Radiance);
       if (!(forward > 1e-4f)) continue;
-      float etaT = wi.z * wo.z > 0 ? 1.0f : (wi.z > 0 ? kBk7 : 1.0f / kBk7);
+      float etaT = wi.z * wo.z > 0 ? 1.0f : (wi.z > 0 ? Bk7 : 1.0f / Bk7);
       // Near the critical angle on the microfacet, F has an infinite slope:
       // the float round-off of either cosine changes F by more than 1e-3.
       Vec3f m = normalize(wi + wo * etaT);
-      float cosInside = std::abs(dot(wi.z < 0 ? wi : wo, m)), cosCritical = std::sqrt(1 - 1 / (kBk7 * kBk7));
+      float cosInside = std::abs(dot(wi.z < 0 ? wi : wo, m)), cosCritical = std::sqrt(1 - 1 / (Bk7 * Bk7));
       if (etaT != 1.0f && std::abs(cosInside - cosCritical) < 1e-3f) continue;
       ++compared;
       ASSERT_NEAR(backward, etaT * etaT * forward, 1e-3f * backward) << "wi=" << wi << " wo=" << wo;

@@ -24,7 +24,7 @@ using namespace femto::test;
 
 namespace {
 
-const Color3f kLe(1.0f, 2.0f, 0.5f);
+const Color3f Le(1.0f, 2.0f, 0.5f);
 
 /// `shape` (with its BSDF) in front of an emitter z = -2 facing +z (black,
 /// so light it reflects adds nothing).
@@ -36,7 +36,7 @@ std::shared_ptr<Scene> sceneInFrontOfEmitter(const std::string& shape, int maxDe
   <shape type="rectangle">
     <transform name="to_world"><scale value="20"/><translate z="-2"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value=")", rgb(kLe), R"("/></emitter>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
   </shape>
 </scene>)"));
 }
@@ -72,7 +72,7 @@ TEST(DielectricSlab, TransmittanceFollowsTheInternalReflectionSeries) {
       SCOPED_TRACE(str("eta = ", eta, ", max_depth = ", maxDepth));
       auto scene = sceneInFrontOfEmitter(dielectricSlab(eta), maxDepth);
       Estimate e = estimateLi(*scene, 100000, downTheNormal);
-      expectWithinErrorBars(e, kLe * slabTransmittance(eta, maxDepth));
+      expectWithinErrorBars(e, Le * slabTransmittance(eta, maxDepth));
     }
   }
   // The two forms really differ at eta = 2.4 by more than the test resolves.
@@ -87,7 +87,7 @@ TEST(DielectricSlab, ThinDielectricPaneSumsTheSeriesInOneEvent) {
     <bsdf type="thindielectric"><float name="int_ior" value="2.4"/><float name="ext_ior" value="1"/></bsdf>
   </shape>)";
   Estimate e = estimateLi(*sceneInFrontOfEmitter(pane, 2), 100000, downTheNormal);
-  expectWithinErrorBars(e, kLe * slabTransmittance(2.4f, -1));
+  expectWithinErrorBars(e, Le * slabTransmittance(2.4f, -1));
 }
 
 TEST(ConductorMirror, ReflectsTheEmitterWithTheFresnelTerm) {
@@ -104,7 +104,7 @@ TEST(ConductorMirror, ReflectsTheEmitterWithTheFresnelTerm) {
     <boolean name="flip_normals" value="true"/>
     <transform name="to_world"><scale value="50"/><translate z="3"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value=")", rgb(kLe), R"("/></emitter>
+    <emitter type="area"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
   </shape>
 </scene>)"));
   auto gold = lookupConductor("Au");
@@ -112,7 +112,7 @@ TEST(ConductorMirror, ReflectsTheEmitterWithTheFresnelTerm) {
     SCOPED_TRACE(str("cos theta = ", cosTheta));
     const Vec3f d(std::sqrt(1 - cosTheta * cosTheta), 0.0f, -cosTheta);
     Estimate e = estimateLi(*scene, 16, [&](PCG32&) { return Ray(Point3f(0, 0, 1) - d * (1.0f / cosTheta), d); });
-    expectWithinErrorBars(e, kLe * fresnelConductor(cosTheta, gold->first, gold->second));
+    expectWithinErrorBars(e, Le * fresnelConductor(cosTheta, gold->first, gold->second));
   }
 }
 
@@ -136,14 +136,14 @@ TEST(LosslessSurfacesInAFurnace, SeeTheUniformEnvironmentUnchanged) {
   <integrator type="path"><integer name="rr_depth" value="2"/></integrator>
   <sensor type="perspective"><film type="hdrfilm"/><sampler type="independent"/></sensor>
   <shape type="sphere">)", bsdf, R"(</shape>
-  <emitter type="constant"><rgb name="radiance" value=")", rgb(kLe), R"("/></emitter>
+  <emitter type="constant"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
 </scene>)"));
     // Rays from outside aimed at random points of the sphere's disk.
     Estimate e = estimateLi(*scene, 20000, [](PCG32& rng) {
       Point2f disk = warp::squareToUniformDiskConcentric({rng.nextFloat(), rng.nextFloat()});
       return Ray(Point3f(disk.x, disk.y, 4.0f), Vec3f(0, 0, -1));
     });
-    expectWithinErrorBars(e, kLe);
+    expectWithinErrorBars(e, Le);
   }
 }
 
@@ -164,7 +164,7 @@ TEST(PlasticUnderUniformSky, ReflectsItsAlbedoWithMisAcrossDeltaAndDiffuseLobes)
     <transform name="to_world"><scale value="100"/></transform>
     <bsdf type="plastic"><rgb name="diffuse_reflectance" value=")", rgb(rho), R"("/></bsdf>
   </shape>
-  <emitter type="constant"><rgb name="radiance" value=")", rgb(kLe), R"("/></emitter>
+  <emitter type="constant"><rgb name="radiance" value=")", rgb(Le), R"("/></emitter>
 </scene>)"));
   double d = 0.0;
   const int steps = 20000;
@@ -178,7 +178,7 @@ TEST(PlasticUnderUniformSky, ReflectsItsAlbedoWithMisAcrossDeltaAndDiffuseLobes)
     const Vec3f dir(std::sqrt(1 - cosTheta * cosTheta), 0.0f, -cosTheta);
     const float r = fresnelDielectric(cosTheta, eta);
     Color3f expected;
-    for (int c = 0; c < 3; ++c) expected[c] = kLe[c] * (r + (1 - r) * float(d) * rho[c] / ((1 - fdrInt) * eta * eta));
+    for (int c = 0; c < 3; ++c) expected[c] = Le[c] * (r + (1 - r) * float(d) * rho[c] / ((1 - fdrInt) * eta * eta));
     expectWithinErrorBars(estimateLi(*scene, 40000, [&](PCG32&) { return Ray(Point3f(0, 0, 0) - dir * 2.0f, dir); }),
                           expected);
   }

@@ -16,10 +16,10 @@ using namespace femto::test;
 namespace {
 
 // Chi-square tests in this file, for the Sidak correction.
-constexpr int kChiSquareTests = 4;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 4;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
-const SourceLocation kWhere{"scene.xml", 12};
+const SourceLocation Where{"scene.xml", 12};
 
 std::shared_ptr<BSDF> make(const std::string& name, const std::function<void(Properties&)>& setup = {}) {
   return makeBSDF(name, setup);
@@ -33,7 +33,7 @@ std::shared_ptr<BSDF> makePlastic(const Color3f& rho, bool nonlinear = false, fl
   });
 }
 
-const std::vector<Vec3f> kDirections = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0.1f, 0.2f}, {-0.5f, 0.5f, 0.05f}};
+const std::vector<Vec3f> Directions = {{0, 0, 1}, {0.3f, -0.2f, 0.8f}, {0.9f, 0.1f, 0.2f}, {-0.5f, 0.5f, 0.05f}};
 
 }  // namespace
 
@@ -82,7 +82,7 @@ TEST(DielectricBSDF, ChoosesReflectionByFresnelAndRefractsBySnell) {
 TEST(DielectricBSDF, LosslessInImportanceTransportAndRadianceScalesByOneOverEtaSquared) {
   const float eta = 1.5f;
   auto bsdf = make("dielectric", [&](Properties& p) { p.setFloat("int_ior", eta); p.setString("ext_ior", "vacuum"); });
-  for (const Vec3f& d : kDirections) {
+  for (const Vec3f& d : Directions) {
     for (float side : {1.0f, -1.0f}) {
       SurfaceInteraction si = localInteraction({d.x, d.y, d.z * side});
       // White furnace in Importance transport: every sample has weight 1.
@@ -135,7 +135,7 @@ TEST(DielectricBSDF, TotalInternalReflectionAlwaysReflects) {
 TEST(ThinDielectricBSDF, ReflectanceSumsInternalReflectionsAndIsLossless) {
   const float eta = 1.5f;
   auto bsdf = make("thindielectric", [&](Properties& p) { p.setFloat("int_ior", eta); p.setFloat("ext_ior", 1.0); });
-  for (const Vec3f& d : kDirections) {
+  for (const Vec3f& d : Directions) {
     for (float side : {1.0f, -1.0f}) {
       SurfaceInteraction si = localInteraction({d.x, d.y, d.z * side});
       const float r = fresnelDielectric(std::abs(si.wi.z), eta), t = 1 - r;
@@ -171,7 +171,7 @@ TEST(ConductorBSDF, ReflectsWithTheConductorFresnelTerm) {
   auto gold = make("conductor", [](Properties& p) { p.setString("material", "Au"); });
   auto nk = lookupConductor("Au");
   ASSERT_TRUE(nk);
-  for (const Vec3f& d : kDirections) {
+  for (const Vec3f& d : Directions) {
     SurfaceInteraction si = localInteraction(d);
     BSDFSample bs;
     Color3f w = gold->sample(si, 0.3f, {0.1f, 0.2f}, bs);
@@ -204,7 +204,7 @@ TEST(PlasticBSDF, AlbedoMatchesTheLayerModel) {
   const Color3f rho(0.2f, 0.6f, 1.0f);
   for (bool nonlinear : {false, true}) {
     auto bsdf = makePlastic(rho, nonlinear, eta);
-    for (const Vec3f& d : kDirections) {
+    for (const Vec3f& d : Directions) {
       SurfaceInteraction si = localInteraction(d);
       const float r = fresnelDielectric(si.wi.z, eta);
       Color3f expected;
@@ -227,7 +227,7 @@ TEST(PlasticBSDF, SampleEvalPdfAgreeAndDiffuseLobePassesChiSquare) {
     (void)deltaFraction;
     double smoothMass = 0;
     ChiSquareResult r = chiSquareSmoothLobes(*bsdf, si, smoothMass);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
     // The probability of the specular choice is 1 - (integral of pdf).
     const int n = 40000;
     PCG32 rng(21, 3);
@@ -244,8 +244,8 @@ TEST(PlasticBSDF, SampleEvalPdfAgreeAndDiffuseLobePassesChiSquare) {
 
 TEST(PlasticBSDF, IsReciprocalAndOneSided) {
   auto bsdf = makePlastic(Color3f(0.3f, 0.5f, 0.7f), true);
-  for (const Vec3f& a : kDirections)
-    for (const Vec3f& b : kDirections) {
+  for (const Vec3f& a : Directions)
+    for (const Vec3f& b : Directions) {
       Vec3f wi = normalize(a), wo = normalize(b);
       Color3f fab = bsdf->eval(localInteraction(wi), wo) / wo.z;
       Color3f fba = bsdf->eval(localInteraction(wo), wi) / wi.z;
@@ -287,7 +287,7 @@ TEST(TwoSidedBSDF, BackSideMirrorsTheFrontOrUsesTheSecondBSDF) {
   checkSampleEvalPdf(*one, back, 2000);
   double smoothMass = 0;
   ChiSquareResult r = chiSquareSmoothLobes(*one, back, smoothMass);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   expectAlbedoAtMost(albedo(*two, back, 20000), 1.0f);
 }
 
@@ -337,7 +337,7 @@ TEST(MaskBSDF, BlendsPassThroughAndTheNestedBSDFByOpacity) {
   expectAlbedoNear(albedo(*mask, si, 40000), Color3f(1 - opacity) + Color3f(0.5f, 0.6f, 0.7f) * opacity);
   double smoothMass = 0;
   ChiSquareResult r = chiSquareSmoothLobes(*mask, si, smoothMass);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   EXPECT_NEAR(smoothMass, opacity, 2e-3);
 }
 
@@ -352,29 +352,29 @@ TEST(SmoothBSDFErrors, BadValuesAreReportedWithFileAndLine) {
   };
   for (const char* plugin : {"dielectric", "thindielectric", "plastic"}) {
     SCOPED_TRACE(plugin);
-    expectError(plugin, [](Properties& p) { p.setFloat("int_ior", -1.5, kWhere); }, "scene.xml:12", "must be positive");
-    expectError(plugin, [](Properties& p) { p.setFloat("ext_ior", 0.0, kWhere); }, "scene.xml:12", "must be positive");
-    expectError(plugin, [](Properties& p) { p.setString("int_ior", "bk8", kWhere); }, "scene.xml:12",
+    expectError(plugin, [](Properties& p) { p.setFloat("int_ior", -1.5, Where); }, "scene.xml:12", "must be positive");
+    expectError(plugin, [](Properties& p) { p.setFloat("ext_ior", 0.0, Where); }, "scene.xml:12", "must be positive");
+    expectError(plugin, [](Properties& p) { p.setString("int_ior", "bk8", Where); }, "scene.xml:12",
                 "unknown material \"bk8\"");
   }
-  expectError("conductor", [](Properties& p) { p.setString("material", "Aux", kWhere); }, "scene.xml:12",
+  expectError("conductor", [](Properties& p) { p.setString("material", "Aux", Where); }, "scene.xml:12",
               "unknown conductor \"Aux\"");
-  expectError("conductor", [](Properties& p) { p.setColor("eta", Color3f(-1.0f), kWhere); p.setColor("k", Color3f(1.0f)); },
+  expectError("conductor", [](Properties& p) { p.setColor("eta", Color3f(-1.0f), Where); p.setColor("k", Color3f(1.0f)); },
               "scene.xml:12", "must not be negative");
-  expectError("conductor", [](Properties& p) { p.setColor("eta", Color3f(1.0f), kWhere); }, "scene.xml:12",
+  expectError("conductor", [](Properties& p) { p.setColor("eta", Color3f(1.0f), Where); }, "scene.xml:12",
               "eta and k must be given together");
   expectError("conductor", [](Properties& p) {
-    p.setString("material", "Au", kWhere);
+    p.setString("material", "Au", Where);
     p.setColor("eta", Color3f(1.0f));
     p.setColor("k", Color3f(1.0f));
   }, "scene.xml:12", "not both");
-  expectError("plastic", [](Properties& p) { p.setColor("diffuse_reflectance", Color3f(-0.5f), kWhere); }, "scene.xml:12",
+  expectError("plastic", [](Properties& p) { p.setColor("diffuse_reflectance", Color3f(-0.5f), Where); }, "scene.xml:12",
               "must not be negative");
   expectError("twosided", [](Properties&) {}, "scene.xml:3", "one or two nested <bsdf>, got 0");
   expectError("twosided", [](Properties& p) { p.setObject("_arg_0", make("dielectric")); }, "scene.xml:3",
               "cannot wrap a transmitting BSDF");
   expectError("mask", [](Properties&) {}, "scene.xml:3", "needs a nested <bsdf>");
-  expectError("mask", [](Properties& p) { p.setFloat("opacity", 1.5, kWhere); p.setObject("b", makeDiffuse(Color3f(0.5f))); },
+  expectError("mask", [](Properties& p) { p.setFloat("opacity", 1.5, Where); p.setObject("b", makeDiffuse(Color3f(0.5f))); },
               "scene.xml:12", "must lie in [0, 1]");
 }
 

@@ -15,8 +15,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 2;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 2;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 }  // namespace
 
@@ -42,7 +42,7 @@ TEST(DiffuseTransmitterBSDF, TransmitsTheTransmittanceFromEitherSideAndReflectsN
     EXPECT_EQ(bsdf->pdf(si, normalize(sameSide)), 0.0f);
     double smoothMass = 0.0;
     ChiSquareResult r = chiSquareSmoothLobes(*bsdf, si, smoothMass);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
     EXPECT_NEAR(smoothMass, 1.0, 1e-2);
   }
 }

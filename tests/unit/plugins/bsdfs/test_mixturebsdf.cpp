@@ -17,8 +17,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 2;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 2;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 std::shared_ptr<BSDF> mixture(const std::string& weights, const std::vector<std::shared_ptr<BSDF>>& bsdfs,
                               const std::function<void(Properties&)>& extra = {}) {
@@ -80,7 +80,7 @@ TEST(MixtureBSDF, SamplesMatchEvalAndPdfAndDeltaTermsKeepTheirShare) {
     EXPECT_NEAR(delta, 0.45 / 0.9, 5.0 * std::sqrt(0.25 / n));  // chosen by normalised weight
     double smoothMass = 0.0;
     ChiSquareResult r = chiSquareSmoothLobes(*bsdf, si, smoothMass);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
     EXPECT_LE(smoothMass, 0.45 / 0.9 + 1e-2);
   }
 }

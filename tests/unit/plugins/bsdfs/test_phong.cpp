@@ -16,8 +16,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 4;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 4;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 std::shared_ptr<BSDF> phong(const Color3f& kd, const Color3f& ks, float exponent, bool ensure = true) {
   return makeBSDF("phong", [&](Properties& p) {
@@ -77,7 +77,7 @@ TEST(PhongBSDF, SamplesMatchEvalAndPdf) {
     EXPECT_EQ(checkSampleEvalPdf(*bsdf, si, 5000), 0.0);
     double smoothMass = 0.0;
     ChiSquareResult r = chiSquareSmoothLobes(*bsdf, si, smoothMass);
-    EXPECT_GT(r.pValue, kSignificance) << r.message;
+    EXPECT_GT(r.pValue, Significance) << r.message;
     // Lobe directions below the horizon fail: the pdf integrates to at most 1.
     EXPECT_LE(smoothMass, 1.0 + 1e-2);
   }

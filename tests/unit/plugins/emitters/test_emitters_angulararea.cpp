@@ -19,7 +19,7 @@ using femto::test::expectColorNear;
 
 namespace {
 
-const Color3f kRadiance(1.0f, 2.0f, 3.0f);
+const Color3f Radiance(1.0f, 2.0f, 3.0f);
 
 /// A 2x2 rectangle in the z = 0 plane facing +z, emitting with angulararea
 /// (or `type`) and the given extra parameters.
@@ -63,14 +63,14 @@ TEST(AngularArea, FalloffAroundTheNormalAndNothingBehind) {
   SurfaceInteraction si;
   si.n = Vec3f(0, 0, 1);
   auto at = [](float deg) { return Vec3f(std::sin(degToRad(deg)), 0.0f, std::cos(degToRad(deg))); };
-  expectColorNear(e.eval(si, at(0.0f)), kRadiance, 1e-5f);
-  expectColorNear(e.eval(si, at(19.0f)), kRadiance, 1e-5f);
-  expectColorNear(e.eval(si, at(25.0f)), kRadiance * 0.5f, 1e-4f);
+  expectColorNear(e.eval(si, at(0.0f)), Radiance, 1e-5f);
+  expectColorNear(e.eval(si, at(19.0f)), Radiance, 1e-5f);
+  expectColorNear(e.eval(si, at(25.0f)), Radiance * 0.5f, 1e-4f);
   expectColorNear(e.eval(si, at(31.0f)), Color3f(0.0f), 0.0f);
   expectColorNear(e.eval(si, Vec3f(0, 0, -1)), Color3f(0.0f), 0.0f);
   // mitransient's defaults: a 10 degree cone without a soft edge.
   auto byDefault = lamp("");
-  expectColorNear(byDefault->emitterRef()->eval(si, at(9.9f)), kRadiance, 1e-5f);
+  expectColorNear(byDefault->emitterRef()->eval(si, at(9.9f)), Radiance, 1e-5f);
   expectColorNear(byDefault->emitterRef()->eval(si, at(10.1f)), Color3f(0.0f), 0.0f);
 }
 

@@ -23,8 +23,8 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 4;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 4;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
 /// A scene holding one emitter (given as XML) and a small cube centred at
 /// (1, 2, 3) with half-size 0.5, so the bounding sphere is known.
@@ -36,8 +36,8 @@ std::shared_ptr<Scene> sceneWith(const std::string& emitterXml) {
   )", emitterXml, R"(
 </scene>)"));
 }
-const Point3f kSphereCenter(1, 2, 3);
-const float kSphereRadius = 0.5f * std::sqrt(3.0f);
+const Point3f SphereCenter(1, 2, 3);
+const float SphereRadius = 0.5f * std::sqrt(3.0f);
 
 const Emitter& onlyEmitter(const Scene& scene) {
   EXPECT_EQ(scene.emitters().size(), 1u);
@@ -82,10 +82,10 @@ void expectRaysCrossTheBoundingSphere(const Emitter& emitter) {
     Ray ray;
     Color3f weight = emitter.sampleRay({rng.nextFloat(), rng.nextFloat()}, {rng.nextFloat(), rng.nextFloat()}, ray);
     EXPECT_TRUE(weight.isValid());
-    Vec3f toCenter = kSphereCenter - ray.o;
+    Vec3f toCenter = SphereCenter - ray.o;
     float along = dot(toCenter, ray.d);
     EXPECT_GT(along, 0.0f);  // the sphere lies ahead
-    EXPECT_LE(length(toCenter - ray.d * along), kSphereRadius * (1.0f + 1e-4f));
+    EXPECT_LE(length(toCenter - ray.d * along), SphereRadius * (1.0f + 1e-4f));
   }
 }
 
@@ -132,7 +132,7 @@ TEST(ConstantEmitter, SamplesTheSphereUniformlyAndReturnsRadianceOverPdf) {
   EXPECT_TRUE(emitter.isEnvironment());
   EXPECT_FALSE(emitter.isDelta());
   ChiSquareResult r = testDirectionSampling(emitter, {0.2f, 0.1f, -0.3f});
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   expectSamplesConsistent(emitter, {1.0f, 2.0f, 3.0f});
   expectColorNear(scene->evalEnvironment(Ray({0, 0, 0}, normalize(Vec3f(1, -2, 3)))), L, 1e-5f);
 }
@@ -142,7 +142,7 @@ TEST(ConstantEmitter, EmitsRaysIntoTheSceneWithItsPower) {
   auto scene = sceneWith(str(R"(<emitter type="constant"><rgb name="radiance" value=")", rgb(L), R"("/></emitter>)"));
   const Emitter& emitter = onlyEmitter(*scene);
   // Flux into the bounding sphere: L pi (4 pi R^2).
-  expectColorNear(emitter.power(), L * (4.0f * Pi * Pi * kSphereRadius * kSphereRadius), 1e-5f);
+  expectColorNear(emitter.power(), L * (4.0f * Pi * Pi * SphereRadius * SphereRadius), 1e-5f);
   expectRaysCrossTheBoundingSphere(emitter);
   // Emitted directions are uniform over the sphere.
   std::function<Vec3f(const Point2f&)> sample = [&](const Point2f& u) {
@@ -152,7 +152,7 @@ TEST(ConstantEmitter, EmitsRaysIntoTheSceneWithItsPower) {
   };
   std::function<double(const Vec3f&)> pdf = [](const Vec3f&) { return double(Inv4Pi); };
   ChiSquareResult r = testSampler<Vec3f>(sphericalDomain(16, 32), sample, pdf, 200000, 4);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
 }
 
 TEST(ConstantEmitter, ConvexDiffuseObjectReflectsAlbedoTimesRadiance) {
@@ -206,7 +206,7 @@ TEST_F(EnvironmentMapTest, SamplingMatchesItsPdf) {
   auto scene = sceneWith(envmapXml(map, 1.0f, R"(<transform name="to_world"><rotate x="1" y="1" angle="40"/></transform>)"));
   const Emitter& env = onlyEmitter(*scene);
   ChiSquareResult r = testDirectionSampling(env, {0, 0, 0});
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   expectSamplesConsistent(env, {0.3f, 0.0f, 1.0f});
   // The density integrates to one over the sphere.
   std::function<double(const Vec3f&)> pdf = [&](const Vec3f& d) {
@@ -237,7 +237,7 @@ TEST_F(EnvironmentMapTest, EmittedRaysFollowTheMapAndItsPower) {
     return env.pdfDirection({0, 0, 0}, ds);
   };
   ChiSquareResult r = testSampler<Vec3f>(sphericalDomain(32, 64), sample, pdf, 500000, 16);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   // Power = pi R^2 times the radiance integrated over directions, which is
   // the mean of the ray weights (an independent Monte Carlo estimate).
   MeanAccumulator weights;
@@ -340,7 +340,7 @@ TEST(DirectionalEmitter, PowerAndRaysCoverTheSceneSphere) {
                              R"("/><transform name="to_world"><rotate x="1" angle="30"/></transform></emitter>)"));
   const Emitter& light = onlyEmitter(*scene);
   EXPECT_TRUE(light.isDelta());
-  expectColorNear(light.power(), E * (Pi * kSphereRadius * kSphereRadius), 1e-5f);
+  expectColorNear(light.power(), E * (Pi * SphereRadius * SphereRadius), 1e-5f);
   expectRaysCrossTheBoundingSphere(light);
   Vec3f travel = normalize(Transform::rotate({1, 0, 0}, 30.0f).vector({0, 0, 1}));
   Ray ray;

@@ -23,7 +23,7 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kWidth = 4, kHeight = 2;
+constexpr int Width = 4, Height = 2;
 
 /// Texel (x, y) = (1 + x, 1 + y, 1 + x + 4 y): all different, all positive.
 Color3f texel(int x, int y) { return Color3f(1.0f + x, 1.0f + y, 1.0f + x + 4.0f * y); }
@@ -32,9 +32,9 @@ class ProjectorTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = scratchDir("projector");
-    Bitmap image(kWidth, kHeight, 3);
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x)
+    Bitmap image(Width, Height, 3);
+    for (int y = 0; y < Height; ++y)
+      for (int x = 0; x < Width; ++x)
         for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = texel(x, y)[c];
     writeEXR(dir_ / "slide.exr", image);
   }
@@ -71,9 +71,9 @@ TEST_F(ProjectorTest, CastsItsImageAsIrradianceOnAFacingPlane) {
   // and, with the 4 x 2 image, y in [-depth/2, depth/2]. The image's left
   // column is at +x and its top row at +y (as the camera sees its film).
   for (float depth : {1.0f, 3.0f})
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        float u = (x + 0.5f) / kWidth, v = (y + 0.5f) / kHeight;
+    for (int y = 0; y < Height; ++y)
+      for (int x = 0; x < Width; ++x) {
+        float u = (x + 0.5f) / Width, v = (y + 0.5f) / Height;
         float px = (1.0f - 2.0f * u) * depth, py = (1.0f - 2.0f * v) * 0.5f * depth;
         SCOPED_TRACE(str("depth ", depth, " texel ", x, ",", y));
         expectColorNear(irradianceOnPlane(*light, px, py, depth), texel(x, y) * (2.0f / (depth * depth)), 1e-4f);

@@ -18,17 +18,17 @@ using namespace femto::test;
 
 namespace {
 
-constexpr int kChiSquareTests = 1;
-const double kSignificance = sidakSignificance(0.01, kChiSquareTests);
+constexpr int ChiSquareTests = 1;
+const double Significance = sidakSignificance(0.01, ChiSquareTests);
 
-const Point3f kPosition(0.5f, -1.0f, 2.0f);
-const Color3f kIntensity(1.0f, 2.0f, 4.0f);
+const Point3f Position(0.5f, -1.0f, 2.0f);
+const Color3f Intensity(1.0f, 2.0f, 4.0f);
 
-/// A spot at kPosition pointing straight down (-z).
+/// A spot at Position pointing straight down (-z).
 std::shared_ptr<Emitter> makeSpot(float cutoff = -1.0f, float beam = -1.0f) {
   Properties props("spot");
-  props.setColor("intensity", kIntensity);
-  props.setTransform("to_world", Transform::translate(kPosition) * Transform::rotate({1, 0, 0}, 180.0f));
+  props.setColor("intensity", Intensity);
+  props.setTransform("to_world", Transform::translate(Position) * Transform::rotate({1, 0, 0}, 180.0f));
   if (cutoff > 0.0f) props.setFloat("cutoff_angle", cutoff);
   if (beam >= 0.0f) props.setFloat("beam_width", beam);
   return makePlugin<Emitter>(ObjectKind::Emitter, props);
@@ -43,7 +43,7 @@ Vec3f directionAt(float angleDeg, float azimuthDeg = 30.0f) {
 /// Intensity toward `d`, measured as sampleDirection's value times distance squared.
 Color3f intensityToward(const Emitter& spot, const Vec3f& d, float dist = 3.0f) {
   DirectionSample ds;
-  Color3f value = spot.sampleDirection(kPosition + d * dist, {0.5f, 0.5f}, ds);
+  Color3f value = spot.sampleDirection(Position + d * dist, {0.5f, 0.5f}, ds);
   EXPECT_TRUE(ds.delta);
   EXPECT_NEAR(ds.dist, dist, 1e-5f);
   EXPECT_NEAR(dot(ds.d, -d), 1.0f, 1e-5f);
@@ -55,15 +55,15 @@ Color3f intensityToward(const Emitter& spot, const Vec3f& d, float dist = 3.0f) 
 TEST(SpotLight, FalloffIsFlatInsideTheBeamAndLinearInAngleToTheCutoff) {
   // Defaults: cutoff 20 degrees, beam width 3/4 of it = 15.
   auto spot = makeSpot();
-  for (float angle : {0.0f, 5.0f, 14.9f}) expectColorNear(intensityToward(*spot, directionAt(angle)), kIntensity, 1e-4f);
-  expectColorNear(intensityToward(*spot, directionAt(17.5f)), kIntensity * 0.5f, 1e-4f);
-  expectColorNear(intensityToward(*spot, directionAt(19.0f)), kIntensity * 0.2f, 1e-4f);
+  for (float angle : {0.0f, 5.0f, 14.9f}) expectColorNear(intensityToward(*spot, directionAt(angle)), Intensity, 1e-4f);
+  expectColorNear(intensityToward(*spot, directionAt(17.5f)), Intensity * 0.5f, 1e-4f);
+  expectColorNear(intensityToward(*spot, directionAt(19.0f)), Intensity * 0.2f, 1e-4f);
   for (float angle : {20.1f, 45.0f, 90.0f, 150.0f}) EXPECT_TRUE(intensityToward(*spot, directionAt(angle)).isBlack());
 
   auto wide = makeSpot(40.0f, 10.0f);
-  expectColorNear(intensityToward(*wide, directionAt(10.0f, 200.0f)), kIntensity, 1e-4f);
-  expectColorNear(intensityToward(*wide, directionAt(25.0f, 200.0f)), kIntensity * 0.5f, 1e-4f);
-  expectColorNear(intensityToward(*wide, directionAt(32.5f, 200.0f)), kIntensity * 0.25f, 1e-4f);
+  expectColorNear(intensityToward(*wide, directionAt(10.0f, 200.0f)), Intensity, 1e-4f);
+  expectColorNear(intensityToward(*wide, directionAt(25.0f, 200.0f)), Intensity * 0.5f, 1e-4f);
+  expectColorNear(intensityToward(*wide, directionAt(32.5f, 200.0f)), Intensity * 0.25f, 1e-4f);
   EXPECT_TRUE(intensityToward(*wide, directionAt(40.5f, 200.0f)).isBlack());
 }
 
@@ -72,9 +72,9 @@ TEST(SpotLight, InverseSquareLawAndDeltaPdf) {
   Color3f near = intensityToward(*spot, directionAt(5.0f), 1.0f), far = intensityToward(*spot, directionAt(5.0f), 7.0f);
   expectColorNear(near, far, 1e-4f);
   DirectionSample ds;
-  spot->sampleDirection(kPosition + directionAt(5.0f) * 2.0f, {0.1f, 0.9f}, ds);
+  spot->sampleDirection(Position + directionAt(5.0f) * 2.0f, {0.1f, 0.9f}, ds);
   EXPECT_EQ(ds.pdf, 1.0f);
-  EXPECT_EQ(spot->pdfDirection(kPosition, ds), 0.0f);  // a delta light is never hit by chance
+  EXPECT_EQ(spot->pdfDirection(Position, ds), 0.0f);  // a delta light is never hit by chance
   EXPECT_TRUE(spot->isDelta());
 }
 
@@ -87,13 +87,13 @@ TEST(SpotLight, EmittedRaysFollowTheConeDensityAndCarryTheIntensity) {
   std::function<Vec3f(const Point2f&)> sample = [&](const Point2f& u) {
     Ray ray;
     spot->sampleRay({0.3f, 0.7f}, u, ray);
-    EXPECT_NEAR(distance(ray.o, kPosition), 0.0f, 1e-5f);
+    EXPECT_NEAR(distance(ray.o, Position), 0.0f, 1e-5f);
     return ray.d;
   };
   std::function<double(const Vec3f&)> pdf = conePdf;
   // 5-degree cells in theta: the cutoff (150 degrees from +z) lies on a cell edge.
   ChiSquareResult r = testSampler<Vec3f>(sphericalDomain(36, 36), sample, pdf, 500000, 16);
-  EXPECT_GT(r.pValue, kSignificance) << r.message;
+  EXPECT_GT(r.pValue, Significance) << r.message;
   // Each ray's weight is the intensity in its direction over the cone density.
   PCG32 rng(3, 5);
   for (int i = 0; i < 200; ++i) {
@@ -112,7 +112,7 @@ TEST(SpotLight, PowerIsTheIntensityIntegratedOverTheSphere) {
     std::vector<double> cells = integrateCells(domain, blue, 8);
     double integral = std::accumulate(cells.begin(), cells.end(), 0.0);
     EXPECT_NEAR(spot->power()[2], integral, 2e-3 * integral);
-    EXPECT_NEAR(spot->power()[0] * kIntensity[2], spot->power()[2] * kIntensity[0], 1e-4f * spot->power()[2]);
+    EXPECT_NEAR(spot->power()[0] * Intensity[2], spot->power()[2] * Intensity[0], 1e-4f * spot->power()[2]);
   }
 }
 

@@ -24,8 +24,8 @@ double field(const Point3f& p) {
   return 1.0 + 2.0 * x - y + 0.5 * z + 0.3 * x * y - 0.2 * y * z + 0.1 * x * y * z;
 }
 
-const int kRes[3] = {3, 2, 2};
-const Point3f kMin(0, 0, 0), kMax(2, 1, 1);
+const int Res[3] = {3, 2, 2};
+const Point3f Min(0, 0, 0), Max(2, 1, 1);
 
 void writeVol(const std::filesystem::path& file, int channels, const char* magic = "VOL", int version = 3,
               size_t dropFloats = 0) {
@@ -33,16 +33,16 @@ void writeVol(const std::filesystem::path& file, int channels, const char* magic
   out.write(magic, 3);
   char v = char(version);
   out.write(&v, 1);
-  int32_t header[5] = {1, kRes[0], kRes[1], kRes[2], channels};
+  int32_t header[5] = {1, Res[0], Res[1], Res[2], channels};
   out.write(reinterpret_cast<const char*>(header), sizeof header);
-  float bounds[6] = {kMin.x, kMin.y, kMin.z, kMax.x, kMax.y, kMax.z};
+  float bounds[6] = {Min.x, Min.y, Min.z, Max.x, Max.y, Max.z};
   out.write(reinterpret_cast<const char*>(bounds), sizeof bounds);
   std::vector<float> data;
-  for (int z = 0; z < kRes[2]; ++z)
-    for (int y = 0; y < kRes[1]; ++y)
-      for (int x = 0; x < kRes[0]; ++x) {
-        Point3f p(kMin.x + (kMax.x - kMin.x) * x / (kRes[0] - 1), kMin.y + (kMax.y - kMin.y) * y / (kRes[1] - 1),
-                  kMin.z + (kMax.z - kMin.z) * z / (kRes[2] - 1));
+  for (int z = 0; z < Res[2]; ++z)
+    for (int y = 0; y < Res[1]; ++y)
+      for (int x = 0; x < Res[0]; ++x) {
+        Point3f p(Min.x + (Max.x - Min.x) * x / (Res[0] - 1), Min.y + (Max.y - Min.y) * y / (Res[1] - 1),
+                  Min.z + (Max.z - Min.z) * z / (Res[2] - 1));
         for (int c = 0; c < channels; ++c) data.push_back(float(field(p) * (c + 1)));
       }
   data.resize(data.size() - dropFloats);
@@ -87,8 +87,8 @@ TEST(MediaGridVolume, TrilinearLookupIsExactForMultilinearData) {
     for (float y : {0.0f, 1.0f})
       for (float z : {0.0f, 1.0f}) largest = std::max(largest, field(Point3f(x, y, z)));
   EXPECT_FLOAT_EQ(grid->maxFloat(), float(largest));
-  EXPECT_EQ(grid->bbox().min, kMin + offset);
-  EXPECT_EQ(grid->bbox().max, kMax + offset);
+  EXPECT_EQ(grid->bbox().min, Min + offset);
+  EXPECT_EQ(grid->bbox().max, Max + offset);
   std::filesystem::remove_all(dir);
 }
 

@@ -16,7 +16,7 @@
 namespace femto {
 namespace {
 
-const Transform kToWorld = Transform::translate(Vec3f(1.0f, 2.0f, 3.0f)) * Transform::rotate(Vec3f(0, 1, 0), 30.0f);
+const Transform ToWorld = Transform::translate(Vec3f(1.0f, 2.0f, 3.0f)) * Transform::rotate(Vec3f(0, 1, 0), 30.0f);
 
 std::shared_ptr<Sensor> camera(const std::string& type, float aperture, float focus) {
   Properties film("hdrfilm");
@@ -25,7 +25,7 @@ std::shared_ptr<Sensor> camera(const std::string& type, float aperture, float fo
   Properties props(type);
   props.setFloat("fov", 50.0f);
   props.setFloat("near_clip", 0.5f);
-  props.setTransform("to_world", kToWorld);
+  props.setTransform("to_world", ToWorld);
   if (type == "thinlens") {
     props.setFloat("aperture_radius", aperture);
     props.setFloat("focus_distance", focus);
@@ -36,10 +36,10 @@ std::shared_ptr<Sensor> camera(const std::string& type, float aperture, float fo
 
 /// The point at camera-space depth z along `ray`.
 Point3f atCameraDepth(const Ray& ray, float z) {
-  Transform toCamera = kToWorld.inverse();
+  Transform toCamera = ToWorld.inverse();
   Point3f o = toCamera.point(ray.o);
   Vec3f d = toCamera.vector(ray.d);
-  return kToWorld.point(o + d * ((z - o.z) / d.z));
+  return ToWorld.point(o + d * ((z - o.z) / d.z));
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ TEST(ThinLens, RaysThroughOneFilmPositionMeetOnTheFocalPlane) {
       EXPECT_EQ(lens->sampleRay(filmPos, Point2f(rng.nextFloat(), rng.nextFloat()), ray), Color3f(1.0f));
       Point3f onFocalPlane = atCameraDepth(ray, focus);
       EXPECT_NEAR(distance(onFocalPlane, expected), 0.0f, 1e-4f);
-      Point3f lensPoint = kToWorld.inverse().point(ray.o);
+      Point3f lensPoint = ToWorld.inverse().point(ray.o);
       EXPECT_NEAR(lensPoint.z, 0.0f, 1e-5f);
       float r2 = lensPoint.x * lensPoint.x + lensPoint.y * lensPoint.y;
       EXPECT_LE(r2, aperture * aperture * (1.0f + 1e-4f));
@@ -86,7 +86,7 @@ TEST(ThinLens, ZeroApertureIsThePerspectiveCameraAndClipPlanesStayPlanes) {
   auto wide = camera("thinlens", 0.5f, 3.0f);
   Ray ray;
   wide->sampleRay(Point2f(5.0f, 25.0f), Point2f(0.9f, 0.1f), ray);
-  Point3f nearPoint = kToWorld.inverse().point(ray(ray.tmin));
+  Point3f nearPoint = ToWorld.inverse().point(ray(ray.tmin));
   EXPECT_NEAR(nearPoint.z, 0.5f, 1e-4f);
 }
 

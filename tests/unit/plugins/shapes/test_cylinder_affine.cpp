@@ -31,13 +31,13 @@ void expectNear(const Vec3f& a, const Vec3f& b, float eps) {
   EXPECT_NEAR(a.z, b.z, eps);
 }
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double DoublePi = 3.14159265358979323846;
 
 /// Ramanujan's second approximation of the perimeter of an ellipse with
 /// semi-axes a and b (relative error about 3 h^5 / 2^17 with h = ((a-b)/(a+b))^2).
 double ramanujanPerimeter(double a, double b) {
   double h = (a - b) * (a - b) / ((a + b) * (a + b));
-  return kPi * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
+  return DoublePi * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
 }
 
 /// The exact perimeter (a >= b) by the arithmetic-geometric mean:
@@ -53,7 +53,7 @@ double agmPerimeter(double a, double b) {
     weight *= 2.0;
     sum += weight * c * c;
   }
-  return 2.0 * kPi / an * (a * a - sum);
+  return 2.0 * DoublePi / an * (a * a - sum);
 }
 
 }  // namespace
@@ -119,9 +119,9 @@ TEST(CylinderAffine, ShearedTubeNormalsAreOrthogonalToBothTangents) {
   double area = 0.0;
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
-    double phi = 2.0 * kPi * (i + 0.5) / n;
+    double phi = 2.0 * DoublePi * (i + 0.5) / n;
     Vec3d tangentPhi(toWorld.vector({-float(std::sin(phi)), float(std::cos(phi)), 0}));
-    area += length(cross(tangentPhi, Vec3d(toWorld.vector({0, 0, 1})))) * 2.0 * kPi / n;
+    area += length(cross(tangentPhi, Vec3d(toWorld.vector({0, 0, 1})))) * 2.0 * DoublePi / n;
   }
   EXPECT_NEAR(cyl->surfaceArea(), area, 1e-5 * area);
 }
@@ -133,8 +133,8 @@ TEST(CylinderAffine, EllipticAreaIsTheEllipsePerimeterTimesTheHeight) {
   double midpoint = 0.0;
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
-    double phi = 2.0 * kPi * (i + 0.5) / n;
-    midpoint += std::hypot(std::sin(phi), 2.0 * std::cos(phi)) * 2.0 * kPi / n;
+    double phi = 2.0 * DoublePi * (i + 0.5) / n;
+    midpoint += std::hypot(std::sin(phi), 2.0 * std::cos(phi)) * 2.0 * DoublePi / n;
   }
   EXPECT_NEAR(midpoint, agmPerimeter(2, 1), 1e-9);
   EXPECT_NEAR(ramanujanPerimeter(1, 2), agmPerimeter(2, 1), 1e-8);
@@ -150,7 +150,7 @@ TEST(CylinderAffine, PositionSamplesAreUniformByAreaWithAMatchingPdf) {
   // (computed here by a fine midpoint sum), and the estimate sum(1 / pdf) / n
   // over the region must be its area, as an area light's pdf would give it.
   auto cyl = cylinder(Transform::scale({1, 3, 2}));
-  const double twoPi = 2.0 * kPi;
+  const double twoPi = 2.0 * DoublePi;
   double regionArc = 0.0, totalArc = 0.0;
   const int m = 200000;
   for (int i = 0; i < m; ++i) {
@@ -182,7 +182,7 @@ TEST(CylinderAffine, PositionSamplesAreUniformByAreaWithAMatchingPdf) {
 }
 
 TEST(EllipseArc, PerimeterAndInversionAgainstQuadrature) {
-  const double twoPi = 2.0 * kPi;
+  const double twoPi = 2.0 * DoublePi;
   for (double ratio : {1.0, 1.5, 4.0, 30.0}) {
     SCOPED_TRACE(ratio);
     EllipseArc arc(Vec3d(1, 0, 0), Vec3d(0, ratio, 0));

@@ -199,12 +199,12 @@ TEST_F(BitmapTextureTest, BadParametersAreErrorsNamingTheProblem) {
 
 namespace {
 
-const Color3f kColor0(0.9f, 0.1f, 0.2f), kColor1(0.1f, 0.6f, 0.3f);
+const Color3f Color0(0.9f, 0.1f, 0.2f), Color1(0.1f, 0.6f, 0.3f);
 
 std::shared_ptr<Texture> makeCheckerboard(const Transform* toUv = nullptr) {
   Properties props("checkerboard");
-  props.setColor("color0", kColor0);
-  props.setColor("color1", kColor1);
+  props.setColor("color0", Color0);
+  props.setColor("color1", Color1);
   if (toUv) props.setTransform("to_uv", *toUv);
   return makePlugin<Texture>(ObjectKind::Texture, props);
 }
@@ -213,16 +213,16 @@ std::shared_ptr<Texture> makeCheckerboard(const Transform* toUv = nullptr) {
 
 TEST(CheckerboardTexture, AlternatesInHalfUnitSquares) {
   auto texture = makeCheckerboard();
-  EXPECT_EQ(texture->eval(atUv(0.25f, 0.25f)), kColor0);
-  EXPECT_EQ(texture->eval(atUv(0.75f, 0.75f)), kColor0);
-  EXPECT_EQ(texture->eval(atUv(0.75f, 0.25f)), kColor1);
-  EXPECT_EQ(texture->eval(atUv(0.25f, 0.75f)), kColor1);
+  EXPECT_EQ(texture->eval(atUv(0.25f, 0.25f)), Color0);
+  EXPECT_EQ(texture->eval(atUv(0.75f, 0.75f)), Color0);
+  EXPECT_EQ(texture->eval(atUv(0.75f, 0.25f)), Color1);
+  EXPECT_EQ(texture->eval(atUv(0.25f, 0.75f)), Color1);
   // The pattern repeats with period 1, also for negative coordinates.
-  EXPECT_EQ(texture->eval(atUv(1.25f, -0.75f)), kColor0);
-  EXPECT_EQ(texture->eval(atUv(-0.25f, 2.25f)), kColor1);
-  expectColorNear(texture->mean(), (kColor0 + kColor1) * 0.5f);
+  EXPECT_EQ(texture->eval(atUv(1.25f, -0.75f)), Color0);
+  EXPECT_EQ(texture->eval(atUv(-0.25f, 2.25f)), Color1);
+  expectColorNear(texture->mean(), (Color0 + Color1) * 0.5f);
   Transform twice = Transform::scale({2.0f, 2.0f, 1.0f});
-  EXPECT_EQ(makeCheckerboard(&twice)->eval(atUv(0.3f, 0.1f)), kColor1);  // pattern uv (0.6, 0.2)
+  EXPECT_EQ(makeCheckerboard(&twice)->eval(atUv(0.3f, 0.1f)), Color1);  // pattern uv (0.6, 0.2)
 }
 
 TEST(CheckerboardTexture, ServesAsDiffuseReflectance) {
@@ -231,7 +231,7 @@ TEST(CheckerboardTexture, ServesAsDiffuseReflectance) {
   auto bsdf = makePlugin<BSDF>(ObjectKind::BSDF, props);
   SurfaceInteraction si = atUv(0.75f, 0.25f);
   si.wi = Vec3f(0, 0, 1);
-  expectColorNear(bsdf->eval(si, Vec3f(0, 0, 1)), kColor1 * InvPi);
+  expectColorNear(bsdf->eval(si, Vec3f(0, 0, 1)), Color1 * InvPi);
 }
 
 TEST(CheckerboardTexture, DiffusePlaneUnderAConstantSkyShowsBothColours) {
@@ -245,8 +245,8 @@ TEST(CheckerboardTexture, DiffusePlaneUnderAConstantSkyShowsBothColours) {
     <transform name="to_world"><scale value="2"/></transform>
     <bsdf type="diffuse">
       <texture type="checkerboard" name="reflectance">
-        <rgb name="color0" value=")", rgb(kColor0), R"("/>
-        <rgb name="color1" value=")", rgb(kColor1), R"("/>
+        <rgb name="color0" value=")", rgb(Color0), R"("/>
+        <rgb name="color1" value=")", rgb(Color1), R"("/>
       </texture>
     </bsdf>
   </shape>
@@ -254,7 +254,7 @@ TEST(CheckerboardTexture, DiffusePlaneUnderAConstantSkyShowsBothColours) {
 </scene>)"));
   const Point3f eye(0.3f, -0.4f, 6.0f);
   const std::pair<Point3f, Color3f> cases[] = {
-      {Point3f(-1, -1, 0), kColor0}, {Point3f(1, -1, 0), kColor1}, {Point3f(1, 1, 0), kColor0}, {Point3f(-1, 1, 0), kColor1}};
+      {Point3f(-1, -1, 0), Color0}, {Point3f(1, -1, 0), Color1}, {Point3f(1, 1, 0), Color0}, {Point3f(-1, 1, 0), Color1}};
   for (const auto& [target, rho] : cases) {
     SCOPED_TRACE(str("point ", target));
     expectWithinErrorBars(estimateLi(*scene, 4000, [&](PCG32&) { return Ray(eye, normalize(target - eye)); }), rho * L);
