@@ -170,6 +170,10 @@ for args, fragment in [
     check(len(lines) == 1 and lines[0].startswith("error: ") and fragment in lines[0],
           f"femto {' '.join(args)}: stderr {result.stderr!r}, expected one line with {fragment!r}")
 
+# A malformed value is a usage error (docs/cli.md: exit 2), not a failed command.
+result = run("profile", volume_path, "--pixel", "5", expect=2)
+check("--pixel expects X,Y" in result.stderr, f"femto profile --pixel 5: stderr {result.stderr!r}")
+
 if failures:
     print(f"{len(failures)} check(s) failed")
     sys.exit(1)

@@ -26,7 +26,7 @@ std::map<std::string, std::string> parseDefines(const std::vector<std::string>& 
   for (const std::string& define : defines) {
     size_t eq = define.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw Error(str("-D expects name=value, got \"", define, "\""));
+      throw UsageError(str("-D expects name=value, got \"", define, "\""));
     result[define.substr(0, eq)] = define.substr(eq + 1);
   }
   return result;
@@ -37,7 +37,7 @@ Point2i parseResolution(const std::string& text) {
   int width = 0, height = 0;
   if (x == std::string::npos || !parsePositive(std::string_view(text).substr(0, x), width) ||
       !parsePositive(std::string_view(text).substr(x + 1), height))
-    throw Error(str("--resolution expects WIDTHxHEIGHT with positive integers (e.g. 640x480), got \"", text, "\""));
+    throw UsageError(str("--resolution expects WIDTHxHEIGHT with positive integers (e.g. 640x480), got \"", text, "\""));
   return Point2i(width, height);
 }
 

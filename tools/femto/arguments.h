@@ -1,6 +1,6 @@
 #pragma once
 // Parsing of the structured command-line values (-D name=value, --resolution WxH).
-// Errors are femto::Error sentences naming the option and the bad value.
+// Errors are UsageError sentences naming the option and the bad value.
 #include <map>
 #include <string>
 #include <vector>
@@ -9,7 +9,16 @@
 
 #include <femto/math/vector.h>
 
+#include <femto/base/error.h>
+
 namespace femto::cli {
+
+/// A malformed command line (docs/cli.md: usage errors exit 2, failed
+/// renders 1): thrown by the parsers of structured option values.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
 
 /// "-D name=value" arguments into a map; a name given twice keeps the last value.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

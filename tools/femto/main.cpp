@@ -8,7 +8,35 @@
 #include <femto/base/error.h>
 #include <femto/core/plugin.h>
 
+#include <string>
+#include <vector>
+
+#include <femto/core/spelling.h>
+
+#include "arguments.h"
 #include "commands.h"
+
+namespace {
+
+/// `femto rendr ...`: name the word and the nearest command, rather than
+/// CLI11's "A subcommand is required". Empty when argv[1] is an option or a command.
+std::string unknownCommand(int argc, char** argv, const CLI::App& app) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  const std::string word = argv[1];
+  for (const std::string& name : names)
+    if (name == word) return "";
+  std::string hint = femto::didYouMean(word, names);
+  if (hint.empty()) {
+    hint = " (commands:";
+    for (const std::string& name : names) hint += " " + name;
+    hint += ")";
+  }
+  return femto::str("error: unknown command \"", word, "\"", hint, "\nRun `femto --help` for the commands.\n");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"femto: a physically based renderer for (time-resolved) light transport", "femto"};
@@ -27,6 +55,10 @@ int main(int argc, char** argv) {
   femto::cli::Command integrate = femto::cli::addIntegrateCommand(app);
   femto::cli::Command profile = femto::cli::addProfileCommand(app);
 
+  if (std::string message = unknownCommand(argc, argv, app); !message.empty()) {
+    std::cerr << message;
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -44,6 +76,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("integrate")) return integrate();
     if (app.got_subcommand("profile")) return profile();
     return 1;  // unreachable: require_subcommand(1)
+  } catch (const femto::cli::UsageError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 2;
   } catch (const femto::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
   } catch (const std::exception& e) {

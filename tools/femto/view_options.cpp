@@ -1,5 +1,7 @@
 #include "view_options.h"
 
+#include "arguments.h"
+
 #include <charconv>
 #include <iomanip>
 #include <iostream>
@@ -61,7 +63,7 @@ Point2i parsePixel(const std::string& text, int width, int height) {
   int x = 0, y = 0;
   if (comma == std::string::npos || !parseInt(std::string_view(text).substr(0, comma), x) ||
       !parseInt(std::string_view(text).substr(comma + 1), y))
-    throw Error(str("--pixel expects X,Y (column, row), got \"", text, "\""));
+    throw UsageError(str("--pixel expects X,Y (column, row), got \"", text, "\""));
   if (x < 0 || x >= width || y < 0 || y >= height)
     throw Error(str("--pixel ", text, " is outside the volume (", width, "x", height, ")"));
   return Point2i(x, y);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <femto/core/log.h>
 #include <femto/render/default_child.h>
 #include <femto/render/detail/embree_accel.h>
 #include <femto/render/shape_group.h>
@@ -13,6 +14,14 @@ namespace femto {
 struct Scene::Accel : detail::EmbreeAccel {
   using detail::EmbreeAccel::EmbreeAccel;
 };
+
+/// A scene without light renders black, one without shapes shows only the
+/// emitters at infinity: say so rather than write such an image without a word.
+void Scene::warnIfEmpty(const Properties& props) const {
+  std::string where = props.location().known() ? props.location().toString() + ": " : std::string();
+  if (emitters_.empty()) logWarn(where, "the scene has no emitter: the image will be black");
+  if (shapes_.empty()) logWarn(where, "the scene has no shape: only emitters at infinity can be seen");
+}
 
 Scene::Scene(const Properties& props) {
   for (const auto& obj : props.objectsOfKind(ObjectKind::Shape)) shapes_.push_back(std::static_pointer_cast<Shape>(obj));
@@ -53,6 +62,7 @@ Scene::Scene(const Properties& props) {
     if (!dynamic_cast<const ShapeInstance*>(shape.get())) hasPassThroughShapes_ |= isPassThrough(shape->bsdf());
   }
   accel_ = std::make_unique<Accel>(shapes_);
+  warnIfEmpty(props);
 
   // Emitters are picked with probability proportional to their sampling weight.
   emitterCdf_.reserve(emitters_.size());

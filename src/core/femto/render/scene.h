@@ -61,6 +61,7 @@ class Scene : public Object {
   bool hasPassThroughShapes() const { return hasPassThroughShapes_; }
 
  private:
+  void warnIfEmpty(const Properties& props) const;
   struct Accel;  // Embree state (detail/embree_accel.h, internal to the core)
   std::unique_ptr<Accel> accel_;
   std::vector<std::shared_ptr<Shape>> shapes_;
