@@ -1,6 +1,11 @@
 // `femto render scene.xml`: load, render with the scene's integrator, write
 // the image, print a one-line summary.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -9,6 +14,7 @@
 
 #include <tbb/global_control.h>
 
+#include <femto/base/error.h>
 #include <femto/core/log.h>
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
@@ -44,6 +50,25 @@ fs::path outputPath(const RenderSettings& settings) {
   return fs::path(settings.scene).stem().string() + ".exr";
 }
 
+/// The output must be writable before any work starts: a render that fails
+/// only when it writes loses all of it. Probes the folder with a file of its
+/// own, which also catches read-only and pseudo file systems (/proc) that
+/// permission bits do not show. Messages name the path as the user gave it.
+void checkOutputWritable(const fs::path& output) {
+  if (fs::is_directory(output))
+    throw Error(str("-o \"", output.string(), "\" is a folder: give a file name, e.g. \"", (output / "image.exr").string(), "\""));
+  fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  if (!fs::is_directory(folder))
+    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" does not exist"));
+  fs::path probe = folder / (".femto-write-test-" + std::to_string(::getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0)
+    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" is not writable (",
+                    std::strerror(errno), ")"));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 LoadOptions loadOptions(const RenderSettings& settings) {
   LoadOptions options;
   options.defines = parseDefines(settings.defines);
@@ -71,6 +96,7 @@ int render(const RenderSettings& settings) {
   options.seed = settings.seed;
   options.output = outputPath(settings);
   options.progress = !settings.noProgress;
+  checkOutputWritable(options.output);
 
   std::optional<tbb::global_control> threadLimit;
   if (settings.threads > 0)
