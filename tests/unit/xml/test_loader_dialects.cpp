@@ -198,3 +198,15 @@ TEST(LoaderDialects, IntegratorsOfOtherRenderersFailNamingTheTypeLineAndWhatToUs
     EXPECT_NE(message.find("use path (surfaces), transient_path"), std::string::npos) << message;
   }
 }
+
+TEST(LoaderDialects, MitransientNlosSensorAndPhasorFilmFailNamingWhatToUse) {
+  std::string message = loadertest::errorOf([&] {
+    loadStrict("<scene version=\"3.0.0\">\n<shape type=\"rectangle\">\n<sensor type=\"nlos_capture_meter\"/></shape></scene>");
+  });
+  EXPECT_EQ(message.rfind("dialect.xml:3: ", 0), 0u) << message;
+  EXPECT_NE(message.find("non-line-of-sight rendering is not supported yet"), std::string::npos) << message;
+  message = loadertest::errorOf([&] {
+    loadStrict(sceneWith(TransientPath, "<film type=\"phasor_hdr_film\"/>"));
+  });
+  EXPECT_NE(message.find("use transient_hdr_film"), std::string::npos) << message;
+}

@@ -21,6 +21,11 @@ std::string adviceForForeignBSDF(const std::string& name) {
 
 std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
   if (kind == ObjectKind::BSDF) return adviceForForeignBSDF(name);
+  if (kind == ObjectKind::Sensor && (name == "nlos_capture_meter" || name == "nloscapturemeter"))
+    return " (mitransient's non-line-of-sight capture meter: non-line-of-sight rendering is not supported yet; "
+           "for line-of-sight transient renders use a perspective sensor with a transient_hdr_film)";
+  if (kind == ObjectKind::Film && name == "phasor_hdr_film")
+    return " (mitransient's phasor film is not supported; use transient_hdr_film and take the phasor of the .npy volume)";
   if (kind != ObjectKind::Integrator) return "";
   static const std::map<std::string, std::string> advice = {
       {"bdpt", "bidirectional path tracing (Mitsuba's bdpt) is not part of femto"},
