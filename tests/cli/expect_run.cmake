@@ -1,7 +1,8 @@
 # Run one command and check both its exit code and its output (ctest's
 # PASS_REGULAR_EXPRESSION alone would ignore the exit code).
 #   cmake -DEXIT=<code|nonzero> -DOUTPUT=<regex on stdout+stderr> [-DNOT_OUTPUT=<regex>]
-#         [-DEXPECT_FILE=<file the command must create>] -P expect_run.cmake -- <command...>
+#         [-DEXPECT_FILE=<file the command must create>] [-DEXPECT_NO_FILE=<file it must not create>]
+#         -P expect_run.cmake -- <command...>
 cmake_minimum_required(VERSION 3.22)
 # The command follows `--` (arguments after the script reach it as CMAKE_ARGVn).
 set(COMMAND)
@@ -16,6 +17,9 @@ foreach(i RANGE ${last})
 endforeach()
 if(DEFINED EXPECT_FILE)
   file(REMOVE ${EXPECT_FILE})
+endif()
+if(DEFINED EXPECT_NO_FILE)
+  file(REMOVE ${EXPECT_NO_FILE})
 endif()
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
@@ -35,5 +39,8 @@ if(DEFINED NOT_OUTPUT AND all MATCHES "${NOT_OUTPUT}")
 endif()
 if(DEFINED EXPECT_FILE AND NOT EXISTS ${EXPECT_FILE})
   message(FATAL_ERROR "`${shown}` did not write ${EXPECT_FILE}:\n${all}")
+endif()
+if(DEFINED EXPECT_NO_FILE AND EXISTS ${EXPECT_NO_FILE})
+  message(FATAL_ERROR "`${shown}` wrote ${EXPECT_NO_FILE}, which it must not:\n${all}")
 endif()
 message(STATUS "${shown} -> exit ${code}\n${all}")

@@ -103,6 +103,7 @@ int render(const RenderSettings& settings) {
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
 
   std::shared_ptr<Scene> scene = loadScene(settings.scene, load);
+  scene->sensor().film().checkOutputPath(options.output);
   InterruptGuard interrupt;
   options.cancel = &interrupt.cancelFlag();
   RenderStats stats = scene->integrator().render(*scene, options);

@@ -64,13 +64,22 @@ class LDRFilm final : public Film {
     props.getBool("high_quality_edges", false);
   }
 
+  /// An output named .png or .jpg is written in that format (the scene's
+  /// file_format otherwise), with the linear EXR beside it.
   void develop(const ImageBlock& image, const std::filesystem::path& path) const override {
     Bitmap linear = developCrop(image);
     std::filesystem::path exr = path, ldr = path;
     exr.replace_extension(".exr");
-    ldr.replace_extension(extension_);
+    if (!isDisplayExtension(path.extension().string())) ldr.replace_extension(extension_);
     writeEXR(exr, linear);
     writeDisplayImage(ldr, toneMapped(linear));
+  }
+
+  void checkOutputPath(const std::filesystem::path& path) const override {
+    std::string ext = path.extension().string();
+    if (!ext.empty() && ext != ".exr" && !isDisplayExtension(ext))
+      throw Error(str("cannot write \"", path.string(), "\": ldrfilm writes .png or .jpg (and the linear .exr beside it), not \"",
+                      ext, "\""));
   }
 
   std::string defaultExtension() const override { return extension_; }
@@ -91,6 +100,8 @@ class LDRFilm final : public Film {
   }
 
  private:
+  static bool isDisplayExtension(const std::string& ext) { return ext == ".png" || ext == ".jpg" || ext == ".jpeg"; }
+
   float encode(float v) const { return gamma_ == -1.0f ? linearToSRGB(v) : std::pow(v, 1.0f / gamma_); }
 
   static float luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]; }

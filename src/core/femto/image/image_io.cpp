@@ -100,6 +100,18 @@ void writeDisplayImage(const std::filesystem::path& path, const Bitmap& image) {
   });
 }
 
+void writeFloatImage(const std::filesystem::path& path, const Bitmap& image) {
+  checkImage(path, image);
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out) throw Error(str("cannot write \"", path.string(), "\": ", OIIO::geterror()));
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.data.data()) || !out->close())
+      throw Error(str("cannot write \"", path.string(), "\": ", out->geterror()));
+  });
+}
+
 float srgbToLinear(float v) {
   if (!(v > 0.0f)) return 0.0f;
   if (v >= 1.0f) return 1.0f;

@@ -30,6 +30,9 @@ void writePNG(const std::filesystem::path& path, const Bitmap& image, float expo
 /// gamma-encoded; clamped) as 8 bits per channel, in the format the
 /// extension names (PNG, JPEG, ... as OpenImageIO writes them).
 void writeDisplayImage(const std::filesystem::path& path, const Bitmap& image);
+/// Write linear float data in the format the extension names, through
+/// OpenImageIO (Radiance .hdr, TIFF, PFM, ...; OpenEXR has writeEXR).
+void writeFloatImage(const std::filesystem::path& path, const Bitmap& image);
 /// Read any image OpenImageIO can open (EXR, HDR, PNG, JPEG, ...), as float.
 /// 8-bit sRGB inputs are returned as stored values (no linearisation).
 Bitmap readImage(const std::filesystem::path& path);

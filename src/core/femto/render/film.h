@@ -31,6 +31,9 @@ class Film : public Object {
   virtual void develop(const ImageBlock& image, const std::filesystem::path& path) const = 0;
   /// Default output file extension (".exr").
   virtual std::string defaultExtension() const { return ".exr"; }
+  /// Called before rendering with the output path: refuse (femto::Error) an
+  /// output the film cannot write, so no render is lost to a bad name.
+  virtual void checkOutputPath(const std::filesystem::path&) const {}
   /// Does the film have a time axis (only transient integrators can fill it)?
   virtual bool timeResolved() const { return false; }
   /// mitransient gives the time filter to the integrator (temporal_filter);
