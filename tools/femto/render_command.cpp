@@ -51,15 +51,19 @@ fs::path outputPath(const RenderSettings& settings) {
 }
 
 /// The output must be writable before any work starts: a render that fails
-/// only when it writes loses all of it. Probes the folder with a file of its
-/// own, which also catches read-only and pseudo file systems (/proc) that
-/// permission bits do not show. Messages name the path as the user gave it.
+/// only when it writes loses all of it. Makes a missing folder, then probes
+/// the folder with a file of its own, which also catches read-only and pseudo
+/// file systems (/proc) that permission bits do not show. Messages name the
+/// path as the user gave it.
 void checkOutputWritable(const fs::path& output) {
   if (fs::is_directory(output))
     throw Error(str("-o \"", output.string(), "\" is a folder: give a file name, e.g. \"", (output / "image.exr").string(), "\""));
   fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(folder))
-    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" does not exist"));
+  // A missing folder is made, as the writers always did (`make render` writes to out/).
+  std::error_code made;
+  if (!fs::is_directory(folder) && !fs::create_directories(folder, made) && !fs::is_directory(folder))
+    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" cannot be made (",
+                    made ? made.message() : std::string("not a folder"), ")"));
   fs::path probe = folder / (".femto-write-test-" + std::to_string(::getpid()));
   int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0)
