@@ -169,6 +169,7 @@ TEST(LoaderUpgrade, CamelToSnake) {
   EXPECT_EQ(camelToSnake("uv2Scale"), "uv2_scale");
   EXPECT_EQ(camelToSnake("already_snake"), "already_snake");
   EXPECT_EQ(camelToSnake("IOR"), "ior");
+  EXPECT_EQ(camelToSnake("B"), "B");  // mitchell's parameters, the same in both dialects
 }
 
 TEST(LoaderUpgrade, OnlyLegacyDialectIsRenamed) {

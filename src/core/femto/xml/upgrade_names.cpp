@@ -5,6 +5,9 @@
 namespace femto::xml {
 
 std::string camelToSnake(std::string_view name) {
+  // A one-letter name (mitchell's "B" and "C") is spelt the same in both
+  // dialects: there is no word boundary to mark.
+  if (name.size() == 1) return std::string(name);
   std::string out;
   for (size_t i = 0; i < name.size(); ++i) {
     auto c = static_cast<unsigned char>(name[i]);

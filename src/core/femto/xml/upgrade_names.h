@@ -10,7 +10,8 @@ namespace femto::xml {
 
 /// "toWorld" -> "to_world", "intIOR" -> "int_ior", "cropOffsetX" -> "crop_offset_x":
 /// an underscore before an uppercase letter that follows a lowercase letter or
-/// a digit, then everything lowercased. snake_case input is returned unchanged.
+/// a digit, then everything lowercased. snake_case input and one-letter names
+/// ("B") are returned unchanged.
 std::string camelToSnake(std::string_view name);
 
 /// Rewrite the name="" attributes of every node from a version < 2 file.
