@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include <femto/base/temp_files.h>
 #include <femto/image/image_io.h>
 #include <femto/film/npy_volume.h>
 #include <femto/film/transient_film.h>
@@ -47,6 +48,7 @@ class TransientOutput {
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;
   std::filesystem::path volumeTmp_;
+  std::optional<TempFileGuard> volumeTmpGuard_;  // removed even when a signal ends the process
   std::optional<NpyVolume> volume_;
   Bitmap steady_, before_, after_;
 };

@@ -42,7 +42,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile), pass); };
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume));
+    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
+                                                TransientTile::bytesPerPixel(film.timeGrid().bins)));
     if (!stats.completed) break;
   }
   // Frames are written in parallel: with the thread count the user asked for.

@@ -3,10 +3,15 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <optional>
 #include <vector>
 
+#include <femto/base/error.h>
 #include <femto/core/log.h>
+#include <femto/core/resources.h>
 #include <femto/core/progress.h>
 #include <femto/render/scene.h>
 
@@ -19,13 +24,13 @@ struct Tile {
   uint64_t samples = 0, invalid = 0;
 };
 
-std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size) {
+std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size, int side) {
   std::vector<Tile> tiles;
-  for (int y = 0; y < size.y; y += RenderTileSize)
-    for (int x = 0; x < size.x; x += RenderTileSize) {
+  for (int y = 0; y < size.y; y += side)
+    for (int x = 0; x < size.x; x += side) {
       Tile t;
       t.offset = Point2i(offset.x + x, offset.y + y);
-      t.size = Point2i(std::min(RenderTileSize, size.x - x), std::min(RenderTileSize, size.y - y));
+      t.size = Point2i(std::min(side, size.x - x), std::min(side, size.y - y));
       tiles.push_back(std::move(t));
     }
   return tiles;
@@ -67,13 +72,31 @@ class ImageBlockTile final : public TileAccumulator {
   const SplatFunction& splatFn_;
 };
 
+/// Tiles rendering or waiting for an earlier one to be consumed: the
+/// pipeline's token limit, in the task arena the render runs in.
+size_t tilesInFlight() { return size_t(2 * tbb::this_task_arena::max_concurrency()); }
+
 }  // namespace
 
+int tileSideWithin(double bytesPerPixel, size_t tilesInFlight) {
+  if (bytesPerPixel <= 0.0) return RenderTileSize;
+  const double pixelsPerTile = TileMemoryBound / (double(tilesInFlight) * bytesPerPixel);
+  if (pixelsPerTile < 1.0)
+    throw Error(str("one pixel of a tile holds ", formatBytes(bytesPerPixel), " and ", tilesInFlight,
+                    " tiles are in flight (two per thread): ", formatBytes(bytesPerPixel * double(tilesInFlight)),
+                    ", above the ", formatBytes(TileMemoryBound),
+                    " the render loop allows; use fewer time bins (or fewer threads, -t)"));
+  return std::clamp(int(std::sqrt(pixelsPerTile)), 1, RenderTileSize);
+}
+
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume) {
+                             const TileConsumer& consume, double tileBytesPerPixel) {
   const Film& film = scene.sensor().film();
   const Sampler& prototype = scene.sensor().sampler();
-  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
+  std::optional<tbb::task_arena> arena;
+  if (options.threads > 0) arena.emplace(options.threads);
+  const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
+  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize(), tileSideWithin(tileBytesPerPixel, tokens));
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
   ProgressReporter progress("Rendering", pixelsTotal, options.progress);
   bool cancelled = false;
@@ -84,7 +107,6 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
     // order. The token limit bounds how many tiles exist at once (rendering
     // or waiting for an earlier tile), which bounds memory for large tiles
     // (transient films) and keeps the consumer's sums in a fixed order.
-    const size_t tokens = size_t(2 * tbb::this_task_arena::max_concurrency());
     size_t next = 0;
     tbb::parallel_pipeline(
         tokens,
@@ -114,12 +136,10 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
               stats.invalidSamples += tile->invalid;
             }));
   };
-  if (options.threads > 0) {
-    tbb::task_arena arena(options.threads);
-    arena.execute(work);
-  } else {
+  if (arena)
+    arena->execute(work);
+  else
     work();
-  }
   progress.finish();
 
   stats.completed = !cancelled;
