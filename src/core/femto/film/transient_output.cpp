@@ -39,7 +39,8 @@ void removeStaleFrames(const std::filesystem::path& dir, const std::string& exte
   for (const auto& p : stale) std::filesystem::remove(p, ec);
 }
 
-void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes) {
+void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes,
+                 const std::function<void(int done, int total)>& onBatch) {
   const int bins = volume.bins();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -54,6 +55,7 @@ void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size
     std::vector<Bitmap> frames = readFrames(volume, b0, count);
     // Frames are independent files: compress and write them in parallel.
     tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameFileName(b0 + k, bins, ".exr"), frames[size_t(k)]); });
+    if (onBatch) onBatch(b0 + count, bins);
   }
 }
 
@@ -127,13 +129,13 @@ VolumeInfo TransientOutput::volumeInfo() const {
   return info;
 }
 
-void TransientOutput::finish() {
+void TransientOutput::finish(const std::function<void(int done, int total)>& onFrames) {
   if (!paths_) return;
   Film::writeExrWithPreview(paths_->steady, steady_);
   writeEXR(paths_->before, before_);
   writeEXR(paths_->after, after_);
   if (!volume_) return;
-  if (film_.writesFrames()) writeFrames(*volume_, paths_->framesDir, FrameBudgetBytes);
+  if (film_.writesFrames()) writeFrames(*volume_, paths_->framesDir, FrameBudgetBytes, onFrames);
   volume_.reset();
   std::error_code ec;
   if (film_.writesVolume()) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -90,7 +91,7 @@ int tileSideWithin(double bytesPerPixel, size_t tilesInFlight) {
 }
 
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume, double tileBytesPerPixel) {
+                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress) {
   const Film& film = scene.sensor().film();
   const Sampler& prototype = scene.sensor().sampler();
   std::optional<tbb::task_arena> arena;
@@ -98,7 +99,9 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
   const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
   std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize(), tileSideWithin(tileBytesPerPixel, tokens));
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  ProgressReporter progress("Rendering", pixelsTotal, options.progress);
+  std::optional<ProgressReporter> ownProgress;
+  ProgressReporter& progress = jobProgress ? *jobProgress : ownProgress.emplace("Rendering", pixelsTotal, options.progress);
+  const auto start = std::chrono::steady_clock::now();
   bool cancelled = false;
   RenderStats stats;
 
@@ -140,10 +143,10 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
     arena->execute(work);
   else
     work();
-  progress.finish();
+  if (ownProgress) ownProgress->finish();
 
   stats.completed = !cancelled;
-  stats.seconds = progress.elapsedSeconds();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
   if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
@@ -155,7 +158,7 @@ namespace {
 /// Splat `splatFn` through the film's reconstruction filter into `result`
 /// (crop-window sized block), tiles merged in tile order.
 RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
-                             ImageBlock& result) {
+                             ImageBlock& result, ProgressReporter* progress = nullptr) {
   const ReconstructionFilter* filter = scene.sensor().film().filter();
   const int channels = result.channelCount();
   auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
@@ -164,7 +167,7 @@ RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, c
   // Merged in tile order: the floating-point sums are then the same whatever
   // the number of threads or the schedule.
   auto consume = [&](TileAccumulator& tile) { result.merge(static_cast<ImageBlockTile&>(tile).block); };
-  return renderTileStream(scene, options, makeTile, consume);
+  return renderTileStream(scene, options, makeTile, consume, 0.0, progress);
 }
 
 }  // namespace
@@ -206,6 +209,9 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
   // Every pass splats the same number of samples per pixel into one block:
   // its developed value (weighted sum / weight sum) is the mean of the passes.
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
+  // One bar for all passes: its ETA is that of the whole render.
+  const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
+  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)), options.progress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
     CameraRadianceFunction radiance = radianceOf(pass);
@@ -217,9 +223,12 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
     };
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderTiles(scene, passOptions, sampleFn, result));
+    accumulatePassStats(stats, renderSplatTiles(scene, passOptions, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+      return block.put(pos, sampleFn(pos, sampler));
+    }, result, &progress));
     if (!stats.completed) break;
   }
+  progress.finish();
   if (!options.output.empty()) film.develop(result, options.output);
   return stats;
 }

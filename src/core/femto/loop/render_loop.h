@@ -17,6 +17,7 @@
 
 namespace femto {
 
+class ProgressReporter;
 class Scene;
 
 /// What one tile accumulates into; the loop feeds it every camera sample of the tile.
@@ -52,8 +53,12 @@ int tileSideWithin(double bytesPerPixel, size_t tilesInFlight);
 /// `tileBytesPerPixel`: what an accumulator holds per pixel, which shrinks
 /// the tiles when needed (tileSideWithin). Each pixel's samples depend only
 /// on the seed and the pixel, so the tile side changes no value.
+/// `progress`: the bar of a longer job this stream is part of (several
+/// passes, frames written after), advanced by one per pixel; null: a bar of
+/// its own, when options.progress.
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume, double tileBytesPerPixel = 0.0);
+                             const TileConsumer& consume, double tileBytesPerPixel = 0.0,
+                             ProgressReporter* progress = nullptr);
 
 /// Called per sample: returns the value to splat at `filmPos` (full-film pixels).
 using SampleFunction = std::function<Color3f(const Point2f& filmPos, Sampler& sampler)>;
