@@ -24,7 +24,7 @@ bool HiddenGeometry::sampleable(const Shape* shape) const {
   return std::find(shapes_.begin(), shapes_.end(), shape) != shapes_.end();
 }
 
-bool HiddenGeometry::sampleDirection(const Point3f& from, const Point2f& u, Vec3f& d) const {
+bool HiddenGeometry::sampleDirection(const SurfaceInteraction& ref, const Point2f& u, Vec3f& d) const {
   if (empty()) return false;
   // Pick a shape by area and reuse the part of u.x inside its interval.
   float target = u.x * totalArea_;
@@ -32,7 +32,7 @@ bool HiddenGeometry::sampleDirection(const Point3f& from, const Point2f& u, Vec3
   float start = i == 0 ? 0.0f : cdf_[i - 1];
   float reused = std::clamp((target - start) / (cdf_[i] - start), 0.0f, 0.99999994f);
   PositionSample ps = shapes_[i]->samplePosition(Point2f(reused, u.y));
-  Vec3f v = ps.p - from;
+  Vec3f v = ps.p - ref.offsetOrigin(ps.p - ref.p);
   float len = length(v);
   if (!(len > 0.0f)) return false;
   d = v / len;
@@ -44,12 +44,13 @@ float HiddenGeometry::pdf(const Scene& scene, const SurfaceInteraction& ref, con
   // Walk the whole line: every sampleable surface point on it could have been the one chosen.
   double sum = 0.0;
   Ray ray = ref.spawnRay(d);
+  const Point3f origin = ray.o;
   for (int crossing = 0; crossing < 64; ++crossing) {
     SurfaceInteraction hit;
     if (!scene.rayIntersect(ray, hit)) break;
     if (sampleable(hit.shape)) {
       float cosine = std::abs(dot(hit.n, d));
-      float dist = distance(ref.p, hit.p);
+      float dist = distance(origin, hit.p);
       if (cosine > 0.0f) sum += double(dist) * dist / (double(cosine) * totalArea_);
     }
     ray = hit.spawnRay(d);

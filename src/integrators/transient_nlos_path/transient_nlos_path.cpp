@@ -242,7 +242,7 @@ class TransientNlosPath final : public TransientIntegrator {
     Color3f weight;
     float relativeEta = 1.0f;
     if (mixture && (!hiddenRoulette_ || uPick < 0.5f)) {
-      if (!hidden->sampleDirection(si.p, u, wo)) return false;
+      if (!hidden->sampleDirection(si, u, wo)) return false;
     } else {
       BSDFSample bs;
       weight = bsdf.sample(si, uLobe, u, bs);
