@@ -13,8 +13,12 @@
 // are checked to change exactly what they claim, contribution by contribution.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include <femto/render/nlos_sensor.h>
 
@@ -334,4 +338,46 @@ TEST(TransientNlosPath, LaserAndHiddenGeometrySamplingAgreeWithPlainPathTracing)
     EXPECT_NEAR(opl[v].mean(), opl[0].mean(), 5.0 * seOpl) << "radiance-weighted OPL, standard error " << seOpl;
     EXPECT_GT(radiance[v].mean(), 10.0 * se) << "too few paths found the light to compare";
   }
+}
+
+// A capture is a function of the scene and the seed, whatever the thread
+// count: the .npy of a 1-thread and a 2-thread render are the same bytes.
+TEST(TransientNlosPath, CaptureIsTheSameForAnyThreadCount) {
+  auto scene = loadSceneStrict(R"(<scene version="3.0.0">
+  <integrator type="transient_nlos_path"><boolean name="nlos_laser_sampling" value="true"/>
+    <boolean name="nlos_hidden_geometry_sampling" value="true"/>
+    <boolean name="nlos_hidden_geometry_sampling_do_rroulette" value="true"/></integrator>
+  <shape type="rectangle">
+    <sensor type="nlos_capture_meter">
+      <point name="sensor_origin" x="1.8" y="0.3" z="0.9"/><boolean name="confocal" value="true"/>
+      <emitter type="projector"><float name="fov" value="0.5"/></emitter>
+      <sampler type="independent"><integer name="sample_count" value="8"/></sampler>
+      <film type="transient_hdr_film"><integer name="width" value="16"/><integer name="height" value="16"/>
+        <integer name="temporal_bins" value="64"/><float name="bin_width_opl" value="0.05"/><float name="start_opl" value="3"/>
+        <boolean name="write_frames" value="false"/><rfilter type="box"/></film>
+    </sensor>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="0.2"/><rotate x="1" angle="180"/><translate z="0.6"/></transform>
+  </shape>
+</scene>)");
+  auto dir = std::filesystem::temp_directory_path() / str("femto-nlos-threads-", ::getpid());
+  std::filesystem::create_directories(dir);
+  std::string bytes[2];
+  for (int threads : {1, 2}) {
+    RenderOptions options;
+    options.output = dir / str("capture", threads, ".exr");
+    options.progress = false;
+    options.threads = threads;
+    options.seed = 5;
+    scene->integrator().render(*scene, options);
+    auto npy = options.output;
+    npy.replace_extension(".npy");
+    std::ifstream in(npy, std::ios::binary);
+    bytes[threads - 1] = std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  std::filesystem::remove_all(dir);
+  ASSERT_GT(bytes[0].size(), 16u * 16u * 64u * 3u * 4u);
+  EXPECT_NE(bytes[0].find_first_not_of('\0', 128), std::string::npos) << "a black capture";
+  EXPECT_TRUE(bytes[0] == bytes[1]) << "the 1-thread and 2-thread captures differ";
 }
