@@ -40,11 +40,11 @@
 // | discard_direct_paths | boolean | false   | drop the 2-segment paths sensor -> wall -> laser           | -    |
 // | nlos_laser_sampling  | boolean | false   | connect each vertex to the spot the laser lights            | -    |
 // | nlos_hidden_geometry_sampling | boolean | false | sample directions toward the hidden geometry        | -    |
-// | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random (1/2 each) | - |
-// | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as hidden geometry | - |
-// | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own), "box", "gaussian" | - |
-// | gaussian_stddev      | float   | 2       | its standard deviation                                      | bins |
-// | block_size           | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
+// | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random
+// (1/2 each) | - | | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as
+// hidden geometry | - | | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own),
+// "box", "gaussian" | - | | gaussian_stddev      | float   | 2       | its standard deviation | bins | | block_size |
+// integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
 //
 // With the capture meter's account_first_and_last_bounces = false every
 // contribution's OPL drops |sensor - watched wall point| + |laser - aimed
@@ -70,10 +70,10 @@ namespace {
 /// One camera path: where it is, its OPL there and what it carries.
 struct NlosPath {
   SurfaceInteraction si;
-  double opl = 0.0;     // OPL from the sensor to si.p
-  Color3f beta{1.0f};   // throughput
-  int segments = 1;     // the camera segment
-  float eta = 1.0f;     // refractive index where the path is (inside a dielectric: the product of its refractions)
+  double opl = 0.0;    // OPL from the sensor to si.p
+  Color3f beta{1.0f};  // throughput
+  int segments = 1;    // the camera segment
+  float eta = 1.0f;    // refractive index where the path is (inside a dielectric: the product of its refractions)
 };
 
 /// What every contribution of one camera sample shares.
@@ -90,7 +90,8 @@ class TransientNlosPath final : public TransientIntegrator {
   explicit TransientNlosPath(const Properties& props) : depth_(PathDepthSettings::read(props, 6)) {
     filterDepth_ = int(props.getInt("filter_depth", -1, -1, 1 << 20));
     if (props.has("filter_bounces")) {
-      if (props.has("filter_depth")) props.raise("filter_bounces", "give either filter_depth or filter_bounces, not both");
+      if (props.has("filter_depth"))
+        props.raise("filter_bounces", "give either filter_depth or filter_bounces, not both");
       filterDepth_ = int(props.getInt("filter_bounces", -1, -1, 1 << 20));
       if (filterDepth_ >= 0) ++filterDepth_;
     }
@@ -115,8 +116,9 @@ class TransientNlosPath final : public TransientIntegrator {
     sensor.sampleRay(Point2f(0.5f), Point2f(0.5f), probe);  // places the wall points (errors name the wall)
     sensor.laserTarget(sensor.relayWall().bbox().center());
     if (hiddenSampling_ && HiddenGeometry(scene, &sensor.relayWall(), hiddenIncludesWall_).empty())
-      throw Error(str(toString(), ": nlos_hidden_geometry_sampling is on but the scene has no hidden geometry "
-                                  "with area to sample"));
+      throw Error(str(toString(),
+                      ": nlos_hidden_geometry_sampling is on but the scene has no hidden geometry "
+                      "with area to sample"));
     return TransientIntegrator::render(scene, options);
   }
 
@@ -165,8 +167,10 @@ class TransientNlosPath final : public TransientIntegrator {
   static const NlosSensor& nlosSensor(const Scene& scene) {
     auto* sensor = dynamic_cast<const NlosSensor*>(&scene.sensor());
     if (!sensor)
-      throw Error(str("transient_nlos_path renders non-line-of-sight captures: nest an nlos_capture_meter in the "
-                      "relay wall (the scene's sensor is ", scene.sensor().toString(), ")"));
+      throw Error(
+          str("transient_nlos_path renders non-line-of-sight captures: nest an nlos_capture_meter in the "
+              "relay wall (the scene's sensor is ",
+              scene.sensor().toString(), ")"));
     return *sensor;
   }
 
@@ -179,8 +183,10 @@ class TransientNlosPath final : public TransientIntegrator {
       return *nested;
     }
     if (scene.emitters().size() != 1)
-      throw Error(str("transient_nlos_path: an NLOS scene has exactly one emitter, the laser (nested in the "
-                      "nlos_capture_meter or at top level); this one has ", scene.emitters().size()));
+      throw Error(
+          str("transient_nlos_path: an NLOS scene has exactly one emitter, the laser (nested in the "
+              "nlos_capture_meter or at top level); this one has ",
+              scene.emitters().size()));
     return *scene.emitters().front();
   }
 

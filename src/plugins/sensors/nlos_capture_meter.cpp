@@ -41,8 +41,9 @@ class NlosCaptureMeter final : public NlosSensor {
  public:
   explicit NlosCaptureMeter(const Properties& props) : NlosSensor(props) {
     if (props.has("to_world"))
-      props.raise("to_world", "the capture meter takes its wall from the shape it is nested in and sits at "
-                              "sensor_origin");
+      props.raise("to_world",
+                  "the capture meter takes its wall from the shape it is nested in and sits at "
+                  "sensor_origin");
     sensorOrigin_ = props.getPoint("sensor_origin", Point3f(0.0f));
     if (props.has("laser_origin")) laserOrigin_ = props.getPoint("laser_origin");
     confocal_ = props.getBool("confocal", false);
@@ -56,8 +57,8 @@ class NlosCaptureMeter final : public NlosSensor {
       Point3f pixel = props.getPoint("laser_lookat_pixel");
       const Point2i& size = film().size();
       if (!(pixel.x >= 0.0f && pixel.x <= float(size.x) && pixel.y >= 0.0f && pixel.y <= float(size.y)))
-        props.raise("laser_lookat_pixel", str("(", pixel.x, ", ", pixel.y, ") is outside the ", size.x, "x", size.y,
-                                              " film"));
+        props.raise("laser_lookat_pixel",
+                    str("(", pixel.x, ", ", pixel.y, ") is outside the ", size.x, "x", size.y, " film"));
       if (pixel.z != 0.0f) props.raise("laser_lookat_pixel", "its z must be 0 (it is a film position)");
       lookatUv_ = Point2f(pixel.x / float(size.x), pixel.y / float(size.y));
     }
@@ -119,8 +120,9 @@ class NlosCaptureMeter final : public NlosSensor {
   const TriangleMesh& wallMesh() const {
     const TriangleMesh* mesh = wall_ ? wall_->asMesh() : nullptr;
     if (!mesh || mesh->uvs().empty())
-      throw Error(str(toString(), ": the relay wall must be a rectangle or a mesh with texture coordinates, whose uv "
-                                  "square the film's pixels divide"));
+      throw Error(str(toString(),
+                      ": the relay wall must be a rectangle or a mesh with texture coordinates, whose uv "
+                      "square the film's pixels divide"));
     return *mesh;
   }
 

@@ -31,35 +31,42 @@ using namespace femto::test;
 
 namespace {
 
-const Point3f Origin(1.8f, 0.3f, 0.9f);        // sensor and laser
+const Point3f Origin(1.8f, 0.3f, 0.9f);         // sensor and laser
 const Point3f PatchCenter(0.1f, -0.05f, 0.6f);  // the hidden square, facing the wall
 const float PatchHalf = 0.05f;  // small: the closed form integrates over it exactly, the spot is a point
 const float RhoWall = 0.7f, RhoPatch = 0.6f;
 const float Irradiance = 1e7f;  // the projector's, on its plane at distance 1
 
 struct NlosSetup {
-  std::string integrator;    // extra integrator parameters
-  std::string sensor;        // extra capture-meter parameters
+  std::string integrator;     // extra integrator parameters
+  std::string sensor;         // extra capture-meter parameters
   float fovDegrees = 0.002f;  // the laser's (its spot's size bounds the closed form's bias)
 };
 
 std::shared_ptr<Scene> nlosScene(const NlosSetup& s) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
-  <integrator type="transient_nlos_path">)", s.integrator, R"(</integrator>
+  <integrator type="transient_nlos_path">)",
+                             s.integrator, R"(</integrator>
   <shape type="rectangle" id="relay_wall">
-    <bsdf type="diffuse"><rgb name="reflectance" value=")", RhoWall, R"("/></bsdf>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")",
+                             RhoWall, R"("/></bsdf>
     <sensor type="nlos_capture_meter">
       <point name="sensor_origin" x="1.8" y="0.3" z="0.9"/>
-      <point name="laser_origin" x="1.8" y="0.3" z="0.9"/>)", s.sensor, R"(
-      <emitter type="projector"><rgb name="irradiance" value=")", Irradiance, R"("/>
-        <float name="fov" value=")", s.fovDegrees, R"("/></emitter>
+      <point name="laser_origin" x="1.8" y="0.3" z="0.9"/>)",
+                             s.sensor, R"(
+      <emitter type="projector"><rgb name="irradiance" value=")",
+                             Irradiance, R"("/>
+        <float name="fov" value=")",
+                             s.fovDegrees, R"("/></emitter>
       <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/><rfilter type="box"/></film>
     </sensor>
   </shape>
   <shape type="rectangle">
-    <transform name="to_world"><scale value=")", PatchHalf, R"("/><rotate x="1" angle="180"/>
+    <transform name="to_world"><scale value=")",
+                             PatchHalf, R"("/><rotate x="1" angle="180"/>
       <translate x="0.1" y="-0.05" z="0.6"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value=")", RhoPatch, R"("/></bsdf>
+    <bsdf type="diffuse"><rgb name="reflectance" value=")",
+                             RhoPatch, R"("/></bsdf>
   </shape>
 </scene>)"));
 }
@@ -199,10 +206,10 @@ const char* Confocal = R"(<boolean name="confocal" value="true"/>)";
 TEST(TransientNlosPath, ConfocalThirdBounceArrivesAtTwiceTheDistanceWithTheClosedFormRadiance) {
   for (bool accounted : {true, false}) {
     SCOPED_TRACE(accounted ? "first and last legs accounted" : "first and last legs removed");
-    NlosSetup setup{ThirdBounceSampling,
-                str(Confocal, "<boolean name=\"account_first_and_last_bounces\" value=\"", accounted ? "true" : "false",
-                    "\"/>")};
-    for (auto [i, j] : {std::pair{0, 0}, std::pair{1, 2}, std::pair{3, 1}}) checkThirdBounce(setup, accounted, i, j, 16000);
+    NlosSetup setup{ThirdBounceSampling, str(Confocal, "<boolean name=\"account_first_and_last_bounces\" value=\"",
+                                             accounted ? "true" : "false", "\"/>")};
+    for (auto [i, j] : {std::pair{0, 0}, std::pair{1, 2}, std::pair{3, 1}})
+      checkThirdBounce(setup, accounted, i, j, 16000);
   }
 }
 
@@ -225,11 +232,13 @@ TEST(TransientNlosPath, FilterDepthAndDiscardDirectPathsKeepExactlyTheirPaths) {
   auto full = contributions(*nlosScene(all), 2, 1, 400);
   std::vector<std::pair<double, Color3f>> split, direct;
   for (int depth = 2; depth <= 6; ++depth) {
-    auto part = contributions(*nlosScene({str(AllDepths, "<integer name=\"filter_depth\" value=\"", depth, "\"/>"),
-                                          Confocal, 3.0f}),
-                              2, 1, 400);
-    if (depth == 2) direct = part;
-    else if (depth == 4) EXPECT_FALSE(part.empty()) << "no third bounce";
+    auto part = contributions(
+        *nlosScene({str(AllDepths, "<integer name=\"filter_depth\" value=\"", depth, "\"/>"), Confocal, 3.0f}), 2, 1,
+        400);
+    if (depth == 2)
+      direct = part;
+    else if (depth == 4)
+      EXPECT_FALSE(part.empty()) << "no third bounce";
     split.insert(split.end(), part.begin(), part.end());
   }
   std::sort(split.begin(), split.end(), [](const auto& a, const auto& b) {
@@ -245,9 +254,9 @@ TEST(TransientNlosPath, FilterDepthAndDiscardDirectPathsKeepExactlyTheirPaths) {
   pixelRay(*nlosScene(all), 2, 1, w);
   for (const auto& [opl, value] : direct) EXPECT_NEAR(opl, 2.0 * distance(Origin, w), 1e-5);
 
-  auto discarded = contributions(*nlosScene({str(AllDepths, R"(<boolean name="discard_direct_paths" value="true"/>)"),
-                                             Confocal, 3.0f}),
-                                 2, 1, 400);
+  auto discarded = contributions(
+      *nlosScene({str(AllDepths, R"(<boolean name="discard_direct_paths" value="true"/>)"), Confocal, 3.0f}), 2, 1,
+      400);
   EXPECT_EQ(discarded.size(), full.size() - direct.size());
   for (const auto& c : discarded)
     EXPECT_TRUE(std::find(direct.begin(), direct.end(), c) == direct.end()) << "a direct path was kept at " << c.first;
@@ -286,7 +295,8 @@ TEST(TransientNlosPath, RefusesASceneWithoutACaptureMeter) {
     plain->integrator().render(*plain, options);
     FAIL() << "rendered without a capture meter";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("nest an nlos_capture_meter in the relay wall"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nest an nlos_capture_meter in the relay wall"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -309,8 +319,11 @@ TEST(TransientNlosPath, LaserAndHiddenGeometrySamplingAgreeWithPlainPathTracing)
     int samples;
   };
   // Fewer samples where every path contributes.
-  std::vector<Variant> variants = {{str(depth4, ls, hg), 80000}, {str(depth4, mix), 400000}, {str(depth4, hg), 2000},
-                                   {str(depth4, ls, mix), 40000}, {str(depth4, ls), 200000}};
+  std::vector<Variant> variants = {{str(depth4, ls, hg), 80000},
+                                   {str(depth4, mix), 400000},
+                                   {str(depth4, hg), 2000},
+                                   {str(depth4, ls, mix), 40000},
+                                   {str(depth4, ls), 200000}};
   std::vector<Mean> radiance(variants.size()), opl(variants.size());
   for (size_t v = 0; v < variants.size(); ++v) {
     auto scene = nlosScene({variants[v].params, R"(<point name="laser_lookat_3d" x="-0.2" y="0.1" z="0"/>)", 25.0f});

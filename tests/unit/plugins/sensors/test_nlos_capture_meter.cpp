@@ -9,29 +9,25 @@
 #include <femto/xml/loader.h>
 
 #include "loader_test_support.h"
+#include "media_test_util.h"
 
 using namespace femto;
 
 namespace {
 
 std::shared_ptr<Scene> loadCapture(const std::string& wall, const std::string& meter, const std::string& extra = "") {
-  static bool searchPathSet = [] {
-    PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
-    return true;
-  }();
-  (void)searchPathSet;
-  LoadOptions options;
-  options.strict = true;
-  return loadSceneFromString(str("<scene version=\"3.0.0\">\n<integrator type=\"transient_nlos_path\"/>\n", wall,
-                                 "\n<sensor type=\"nlos_capture_meter\">\n", meter,
-                                 "<emitter type=\"projector\"><float name=\"fov\" value=\"0.2\"/></emitter>\n"
-                                 "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" "
-                                 "value=\"2\"/><rfilter type=\"box\"/></film>\n</sensor></shape>\n",
-                                 extra, "</scene>"),
-                             ".", options, "nlos.xml");
+  return test::loadSceneStrict(
+      str("<scene version=\"3.0.0\">\n<integrator type=\"transient_nlos_path\"/>\n", wall,
+          "\n<sensor type=\"nlos_capture_meter\">\n", meter,
+          "<emitter type=\"projector\"><float name=\"fov\" value=\"0.2\"/></emitter>\n"
+          "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" "
+          "value=\"2\"/><rfilter type=\"box\"/></film>\n</sensor></shape>\n",
+          extra, "</scene>"),
+      ".", "nlos.xml");
 }
 
-const char* Wall = R"(<shape type="rectangle"><transform name="to_world"><scale x="2" y="1"/><translate z="-1"/></transform>)";
+const char* Wall =
+    R"(<shape type="rectangle"><transform name="to_world"><scale x="2" y="1"/><translate z="-1"/></transform>)";
 
 }  // namespace
 
@@ -69,8 +65,9 @@ TEST(NlosCaptureMeter, BadSetUpsFailNamingTheLineAndWhatToDo) {
                      "(5, 1) is outside the 4x2 film");
   EXPECT_SCENE_ERROR(loadCapture(Wall, "<point name=\"laser_lookat_pixel\" x=\"1\" y=\"1\" z=\"2\"/>\n"), "nlos.xml:5",
                      "its z must be 0");
-  EXPECT_SCENE_ERROR(loadCapture(Wall, "<point name=\"laser_lookat_pixel\" x=\"1\" y=\"1\" z=\"0\"/>"
-                                       "<point name=\"laser_lookat_3d\" x=\"1\" y=\"1\" z=\"0\"/>\n"),
+  EXPECT_SCENE_ERROR(loadCapture(Wall,
+                                 "<point name=\"laser_lookat_pixel\" x=\"1\" y=\"1\" z=\"0\"/>"
+                                 "<point name=\"laser_lookat_3d\" x=\"1\" y=\"1\" z=\"0\"/>\n"),
                      "nlos.xml:5", "either laser_lookat_pixel or laser_lookat_3d");
   EXPECT_SCENE_ERROR(loadCapture(Wall, "<transform name=\"to_world\"><translate x=\"1\"/></transform>\n"), "nlos.xml:5",
                      "sits at sensor_origin");
