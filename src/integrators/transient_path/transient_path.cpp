@@ -58,6 +58,7 @@
 // | rr_depth        | integer | 5       | depth from which Russian roulette may end paths    | -    |
 // | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
 // | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
+// | equiangular     | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
 // | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time window | - |
 // | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
 // | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
@@ -127,6 +128,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       : depth_(PathDepthSettings::read(props, defaults.maxDepth)),
         hideEmitters_(props.getBool("hide_emitters", false)),
         observerTime_(props.getBool("observer_time", true)),
+        equiangular_(props.getBool("equiangular", true)),
         timeGating_(props.getBool("time_gating", false)) {
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
@@ -185,7 +187,8 @@ class TransientPathIntegrator : public TransientIntegrator {
 
   std::string toString() const override {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
-               ", observer_time=", observerTime_ ? "true" : "false", ", time_gating=", timeGating_ ? "true" : "false",
+               ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
+               ", time_gating=", timeGating_ ? "true" : "false",
                "]");
   }
 
@@ -244,7 +247,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// whether next-event estimation also samples it equiangularly (homogeneous
   /// medium, and a vertex on it may still connect to a light: depth).
   void beginMediumSegment(PathState& s, float tMax) const {
-    s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
+    s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
     s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
   }
@@ -398,6 +401,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   PathDepthSettings depth_;
   bool hideEmitters_;
   bool observerTime_;
+  bool equiangular_;
   bool timeGating_;
   bool discardDirectLight_ = false;
 };
