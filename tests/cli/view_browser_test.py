@@ -4,7 +4,8 @@
   view_browser_test.py FEMTO WORKDIR [SCREENSHOT]
 
 Writes two tiny float32 volumes with one hot voxel each (same pixel,
-different bins), starts `femto view a.npy b.npy --no-browser` on a free port
+different bins) and a sparse 12.9 GB one, starts `femto view a.npy b.npy
+large.npy --no-browser` on a free port
 of 127.0.0.1 and drives the page through Chromium's DevTools protocol over a
 pipe (--remote-debugging-pipe: JSON messages separated by NUL bytes on file
 descriptors 3 and 4; Python's standard library only). It moves the time
@@ -12,7 +13,7 @@ slider to the hot bin and checks the screenshot: bright at the hot voxel,
 dark elsewhere (and dark there in another bin); clicks the hot pixel and
 checks each render's plotted profile peaks at its own hot bin; checks the
 difference view; and that requests for anything not named on the command
-line get 404. SCREENSHOT, when given, receives a screenshot for the docs.
+line get 404, and that the large volume is served at once. SCREENSHOT, when given, receives a screenshot for the docs.
 Exits 77 (skipped) when chromium is not installed.
 """
 import base64
@@ -188,6 +189,15 @@ class Browser:
             self.process.wait()
 
 
+def write_sparse_volume(path, height, width, bins):
+    """A black volume as a sparse file: its size, none of its disk blocks."""
+    header = "{'descr': '<f4', 'fortran_order': False, 'shape': (%d, %d, %d, 3), }" % (height, width, bins)
+    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
+    with open(path, "wb") as f:
+        f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode())
+        f.truncate(10 + len(header) + height * width * bins * 12)
+
+
 def start_viewer(volumes):
     """`femto view` on a free port; returns (process, base URL) from its first line."""
     process = subprocess.Popen([FEMTO, "view", *volumes, "--no-browser"], stdout=subprocess.PIPE,
@@ -209,11 +219,11 @@ def status_of(url, method="GET"):
         return e.code
 
 
-def canvas_pixel(browser, canvas_id, x, y):
-    """The screenshot coordinates of the centre of volume pixel (x, y) in a view canvas."""
+def canvas_pixel(browser, canvas_id, x, y, width=W, height=H):
+    """The screenshot coordinates of the centre of pixel (x, y) of a canvas showing width x height pixels."""
     rect = browser.evaluate(f"(() => {{ const r = document.getElementById('{canvas_id}').getBoundingClientRect();"
                             " return [r.left, r.top, r.width, r.height]; })()")
-    return (rect[0] + (x + 0.5) * rect[2] / W, rect[1] + (y + 0.5) * rect[3] / H)
+    return (rect[0] + (x + 0.5) * rect[2] / width, rect[1] + (y + 0.5) * rect[3] / height)
 
 
 def pixel_of(png, point):
@@ -235,12 +245,24 @@ def main():
     with open(os.path.join(WORK, "secret.txt"), "w") as f:
         f.write("not for the viewer\n")
 
-    viewer, base = start_viewer([a, b])
+    # 512 x 512 x 4096 bins = 12.9 GB: opened by memory map, so the viewer
+    # starts and serves a frame without reading the volume.
+    large = os.path.join(WORK, "large.npy")
+    write_sparse_volume(large, 512, 512, 4096)
+    started = time.monotonic()
+    viewer, base = start_viewer([a, b, large])
+    ready = time.monotonic() - started
     browser = None
     try:
+        started = time.monotonic()
+        check(status_of(base + "api/renders/2/frame/4000") == 200, "a frame of the 12.9 GB volume is served")
+        frame = time.monotonic() - started
+        print(f"12.9 GB volume: URL printed {ready:.3f} s after start, a frame served in {frame:.3f} s (wall)")
+        # Generous for a loaded machine: reading the volume would take minutes.
+        check(ready < 5 and frame < 15, f"the 12.9 GB volume opens at once: {ready:.3f} s, frame {frame:.3f} s")
         # Only the named renders, by index; nothing else, no writes.
         check(status_of(base + "api/renders/0/frame/0") == 200, "frame 0 of render 0 is served")
-        for path in ("api/renders/2/frame/0", "secret.txt", "a.npy", "../secret.txt", "%2e%2e/secret.txt",
+        for path in ("api/renders/3/frame/0", "secret.txt", "a.npy", "../secret.txt", "%2e%2e/secret.txt",
                      "api/renders/0/../../secret.txt", "api/files/secret.txt"):
             check(status_of(base + path) == 404, f"{path} is 404")
         check(status_of(base + "api/renders", "POST") == 404, "POST is 404")
@@ -262,7 +284,7 @@ def main():
             check(min(pixel_of(shot, hot)) > 225, f"bin {HOT_BIN_A}: the hot pixel is bright, got {pixel_of(shot, hot)}")
             check(max(pixel_of(shot, cold)) < 30, f"bin {HOT_BIN_A}: another pixel is dark, got {pixel_of(shot, cold)}")
             label = browser.evaluate("document.getElementById('time-label').textContent")
-            check(label.startswith(f"bin {HOT_BIN_A} of {BINS}: OPL 6.0 to 6.5"), f"time label: {label!r}")
+            check(label.startswith(f"bin {HOT_BIN_A} of {BINS}: OPL 6.00 to 6.50"), f"time label: {label!r}")
 
             # Click the hot pixel: both renders' profiles, each peaking at its own hot bin.
             browser.click(*hot)
@@ -273,22 +295,55 @@ def main():
             caption = browser.evaluate("document.getElementById('caption-profile').textContent")
             check(f"pixel {HOT_X},{HOT_Y}" in caption, f"profile caption: {caption!r}")
 
+            # Play advances the bin by itself; Pause stops it.
+            browser.evaluate("document.getElementById('play').click()")
+            time.sleep(1.0)
+            browser.evaluate("document.getElementById('play').click()")
+            browser.evaluate("femtoView.idle()")
+            moved = browser.evaluate("femtoView.state.bin")
+            check(moved != HOT_BIN_A, f"Play moved the bin on from {HOT_BIN_A}: now {moved}")
+            time.sleep(0.3)
+            check(browser.evaluate("femtoView.state.bin") == moved, "Pause stopped the playback")
+
+            # The default exposure (99.5th percentile of non-black voxels: here
+            # the hot voxel itself) shows the hot voxel white, to the histogram's 2 %.
+            browser.open(base + f"?render=0&bin={HOT_BIN_A}")
+            hot = canvas_pixel(browser, "view-a", HOT_X, HOT_Y)
+            stops = float(browser.evaluate("document.getElementById('exposure').value"))
+            check(abs(stops) < 0.05, f"percentile exposure of a single white voxel: {stops} stops, expected about 0")
+            check(min(pixel_of(read_png(browser.screenshot()), hot)) > 225, "percentile exposure: the hot pixel is white")
+
             # The difference a - b in bin HOT_BIN_B: b is brighter there (blue), a is black.
             browser.open(base + f"?render=0&with=1&compare=diff&bin={HOT_BIN_B}&exposure=0")
             hot = canvas_pixel(browser, "view-a", HOT_X, HOT_Y)
             r, g, b_ = pixel_of(read_png(browser.screenshot()), hot)
             check(b_ > 200 and r < 120, f"difference where b is brighter: blue expected, got {(r, g, b_)}")
 
+            # Side by side with the row's streak image, in false colour: the
+            # state the docs' screenshot shows (the page is taller than the window).
+            browser.call("Emulation.setDeviceMetricsOverride", width=1300, height=940, deviceScaleFactor=1,
+                         mobile=False)
+            browser.open(base + f"?render=0&with=1&compare=side&bin={HOT_BIN_A}&exposure=0&falsecolour=1"
+                         f"&pixel={HOT_X},{HOT_Y}&streak=row:{HOT_Y}")
+            png = browser.screenshot()
+            shot = read_png(png)
+            hot_a, hot_b = canvas_pixel(browser, "view-a", HOT_X, HOT_Y), canvas_pixel(browser, "view-b", HOT_X, HOT_Y)
+            check(min(pixel_of(shot, hot_a)) > 180, f"side by side: a's hot pixel is bright, got {pixel_of(shot, hot_a)}")
+            check(max(pixel_of(shot, hot_b)) < 30, f"side by side: b is dark in bin {HOT_BIN_A}, got {pixel_of(shot, hot_b)}")
+            # Row HOT_Y's streak image: x across, bins downwards, bright only at (HOT_X, HOT_BIN_A).
+            for x, bin_, bright in ((HOT_X, HOT_BIN_A, True), (HOT_X, HOT_BIN_B, False), (HOT_X + 1, HOT_BIN_A, False)):
+                value = pixel_of(shot, canvas_pixel(browser, "streak", x, bin_, W, BINS))
+                check((min(value) > 180) if bright else (max(value) < 30),
+                      f"streak at row {HOT_Y}, x {x}, bin {bin_}: {'bright' if bright else 'dark'} expected, got {value}")
             if DOCS_SCREENSHOT:
-                browser.open(base + f"?render=0&with=1&compare=side&bin={HOT_BIN_A}&exposure=0&falsecolour=1"
-                             f"&pixel={HOT_X},{HOT_Y}&streak=row:{HOT_Y}")
                 with open(DOCS_SCREENSHOT, "wb") as f:
-                    f.write(browser.screenshot())
+                    f.write(png)
     finally:
         if browser:
             browser.close()
         viewer.terminate()
         viewer.wait(timeout=10)
+        os.remove(large)  # sparse, but 12.9 GB to any tool that copies it
 
     print(f"{checks - len(failures)} passed, {len(failures)} failed")
     return 1 if failures else 0

@@ -6,9 +6,9 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -78,8 +78,10 @@ TEST_F(ViewServerTest, ListsTheRendersWithTheirTimeAxis) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);
   EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
-  EXPECT_NE(r->body.find("\"name\": \"hot.npy\", \"width\": 7, \"height\": 5, \"bins\": 9"), std::string::npos) << r->body;
-  EXPECT_NE(r->body.find("\"time\": {\"unit\": \"opl\", \"start\": 3, \"bin_width\": 0.5}"), std::string::npos) << r->body;
+  EXPECT_NE(r->body.find("\"name\": \"hot.npy\", \"width\": 7, \"height\": 5, \"bins\": 9"), std::string::npos)
+      << r->body;
+  EXPECT_NE(r->body.find("\"time\": {\"unit\": \"opl\", \"start\": 3, \"bin_width\": 0.5}"), std::string::npos)
+      << r->body;
   // Names only: the folder the volume lies in is not told.
   EXPECT_EQ(r->body.find(::testing::TempDir()), std::string::npos) << r->body;
 }

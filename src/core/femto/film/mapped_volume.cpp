@@ -17,7 +17,11 @@ MappedVolume::MappedVolume(void* mapping, size_t mappedBytes, const float* data,
     : mapping_(mapping), mappedBytes_(mappedBytes), data_(data), height_(height), width_(width), bins_(bins) {}
 
 MappedVolume::MappedVolume(MappedVolume&& o) noexcept
-    : mapping_(o.mapping_), mappedBytes_(o.mappedBytes_), data_(o.data_), height_(o.height_), width_(o.width_),
+    : mapping_(o.mapping_),
+      mappedBytes_(o.mappedBytes_),
+      data_(o.data_),
+      height_(o.height_),
+      width_(o.width_),
       bins_(o.bins_) {
   o.mapping_ = nullptr;
 }

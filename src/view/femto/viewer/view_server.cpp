@@ -101,9 +101,9 @@ ViewServer::ViewServer(std::vector<std::unique_ptr<ViewedRender>> renders) : rou
 
   // Every render route starts with its index; a handler gets the render or
   // the request is 404. femto::Error (a pixel or bin outside the volume) is 404 too.
-  auto renderRoute = [&routes, &http](const std::string& tail,
-                                      std::function<void(const ViewedRender&, const httplib::Request&,
-                                                         httplib::Response&)> handle) {
+  auto renderRoute = [&routes, &http](
+                         const std::string& tail,
+                         std::function<void(const ViewedRender&, const httplib::Request&, httplib::Response&)> handle) {
     http.Get(R"(/api/renders/(\d{1,9}))" + tail,
              [&routes, handle](const httplib::Request& request, httplib::Response& response) {
                const size_t index = size_t(number(request, 1));
@@ -119,9 +119,8 @@ ViewServer::ViewServer(std::vector<std::unique_ptr<ViewedRender>> renders) : rou
   renderRoute(R"(/frame/(\d{1,9}))", [](const ViewedRender& r, const httplib::Request& q, httplib::Response& a) {
     sendFloats(a, r.frame(number(q, 2)));
   });
-  renderRoute("/steady", [](const ViewedRender& r, const httplib::Request&, httplib::Response& a) {
-    sendFloats(a, r.steady());
-  });
+  renderRoute("/steady",
+              [](const ViewedRender& r, const httplib::Request&, httplib::Response& a) { sendFloats(a, r.steady()); });
   renderRoute(R"(/profile/(\d{1,9})/(\d{1,9}))",
               [](const ViewedRender& r, const httplib::Request& q, httplib::Response& a) {
                 sendFloats(a, r.profile(number(q, 2), number(q, 3)));
@@ -156,7 +155,9 @@ ViewServer::~ViewServer() = default;
 int ViewServer::bind(int port) {
   // 127.0.0.1 only: nothing off this machine can reach the renders.
   const char* host = "127.0.0.1";
-  const int bound = port == 0 ? routes_->http.bind_to_any_port(host) : routes_->http.bind_to_port(host, port) ? port : -1;
+  const int bound = port == 0                                ? routes_->http.bind_to_any_port(host)
+                    : routes_->http.bind_to_port(host, port) ? port
+                                                             : -1;
   if (bound <= 0)
     throw Error(port == 0 ? str("cannot listen on any port of ", host)
                           : str("cannot listen on ", host, ":", port, " (is the port taken? try another --port)"));

@@ -181,8 +181,9 @@
     if (generation !== drawGeneration) return;
     // Row: x across, time downwards (width x bins); column: time across, y downwards (bins x height).
     const width = row ? A.width : A.bins, height = row ? A.bins : A.height;
-    const zx = row ? zoomFor(A) : Math.max(1, Math.floor(MaxDisplay / A.bins));
-    const zy = row ? Math.max(1, Math.floor(MaxDisplay / A.bins)) : zoomFor(A);
+    // The spatial axis as in the view; time in at most MaxDisplay / 2 pixels.
+    const zt = Math.max(1, Math.floor(MaxDisplay / 2 / A.bins));
+    const zx = row ? zoomFor(A) : zt, zy = row ? zt : zoomFor(A);
     paint($("streak"), exposed(streakCache.data, width, height, stops, state.falseColour), width * zx, height * zy);
     $("caption-streak").textContent = row ? `streak at row ${index}: x across, time (bins) downwards`
       : `streak at column ${index}: time (bins) across, y downwards`;
