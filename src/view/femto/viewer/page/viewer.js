@@ -89,7 +89,10 @@
     const key = state.steady ? `${render}/steady` : `${render}/${state.bin}`;
     if (!frameCache.has(key)) {
       const url = `/api/renders/${render}/` + (state.steady ? "steady" : `frame/${state.bin}`);
-      frameCache.set(key, request(url));
+      frameCache.set(key, request(url).catch((error) => {
+        frameCache.delete(key);  // not kept: a later draw asks again
+        throw error;
+      }));
       if (frameCache.size > FrameCacheSize) frameCache.delete(frameCache.keys().next().value);
     }
     return frameCache.get(key);
@@ -101,7 +104,11 @@
     if (state.mode === "set") return state.exposure;
     const key = `${state.a}/${state.percentile}`;
     if (!percentileCache.has(key))
-      percentileCache.set(key, request(`/api/renders/${state.a}/percentile?p=${state.percentile}`, "json"));
+      percentileCache.set(key, request(`/api/renders/${state.a}/percentile?p=${state.percentile}`, "json")
+        .catch((error) => {
+          percentileCache.delete(key);
+          throw error;
+        }));
     const { luminance: white } = await percentileCache.get(key);
     const stops = white > 0 ? -Math.log2(white) : 0;
     $("exposure").value = stops.toFixed(2);
@@ -142,8 +149,10 @@
         status(B && B !== A ? `${B.name} is ${B.width}x${B.height}, ${A.name} is ${A.width}x${A.height}: ` +
           "only renders of one size compare" : "pick a second render to compare with");
       else status("");
-      const steadyB = !state.steady && compare && state.bin >= B.bins;
-      const [dataA, dataB] = await Promise.all([frame(state.a), compare && !steadyB ? frame(state.b) : null]);
+      // A second render with fewer bins is black past its last one.
+      const pastB = !state.steady && compare && state.bin >= B.bins;
+      const [dataA, dataB] = await Promise.all([
+        frame(state.a), !compare ? null : pastB ? new Float32Array(B.width * B.height * 3) : frame(state.b)]);
       if (generation !== drawGeneration) return;
       const z = zoomFor(A), w = A.width * z, h = A.height * z;
       const time = state.steady ? "steady (sum over all bins)" : binLabel(A, state.bin);
@@ -160,6 +169,11 @@
         paint($("view-b"), exposed(dataB, B.width, B.height, stops, state.falseColour), w, h);
         $("caption-b").textContent = `${B.name}, ${B.bins} bins`;
       }
+      const marker = $("marker");
+      marker.hidden = !state.pixel;
+      if (state.pixel)
+        Object.assign(marker.style, { left: `${state.pixel[0] * z}px`, top: `${state.pixel[1] * z}px`,
+          width: `${z}px`, height: `${z}px` });
       await drawStreak(stops, generation);
       drawProfile();
     } catch (error) {
@@ -253,7 +267,7 @@
     const shown = state.renders.filter((r) => r.width === A.width && r.height === A.height);
     const data = await Promise.all(shown.map((r) => request(`/api/renders/${r.index}/profile/${x}/${y}`)));
     profiles = shown.map((render, k) => ({ render, data: data[k] }));
-    drawProfile();
+    await draw();  // outlines the pixel
     saveQuery();
   }
 
