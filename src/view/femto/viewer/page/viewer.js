@@ -10,7 +10,7 @@
 (() => {
   const $ = (id) => document.getElementById(id);
   const MaxDisplay = 512;  // CSS pixels a view may take: small volumes are enlarged by a whole factor
-  const FrameCacheSize = 64;
+  const FrameCacheBytes = 256 << 20;  // frames kept for scrubbing back and forth
   const ProfileColours = ["#ffb000", "#4fc3f7", "#e57373", "#81c784", "#ba68c8", "#fff176"];
   // display.cpp's false-colour control points (sRGB), linear between them.
   const Ramp = [
@@ -93,7 +93,8 @@
         frameCache.delete(key);  // not kept: a later draw asks again
         throw error;
       }));
-      if (frameCache.size > FrameCacheSize) frameCache.delete(frameCache.keys().next().value);
+      const r = state.renders[render], kept = Math.max(2, Math.floor(FrameCacheBytes / (r.width * r.height * 12)));
+      while (frameCache.size > Math.min(kept, 256)) frameCache.delete(frameCache.keys().next().value);
     }
     return frameCache.get(key);
   }
