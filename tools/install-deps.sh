@@ -6,8 +6,10 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libembree-dev libopenexr-dev libopenimageio-dev libtinyxml2-dev libtbb-dev
   libgtest-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
+  libcpp-httplib-dev  # femto view: the viewer's HTTP server (a maintained library, not a hand-written parser)
   python3-numpy python3-matplotlib
   ffmpeg  # femto frames --gif/--mp4 (run as a program, not linked)
+  chromium  # the femto view test drives the viewer page in headless Chromium (skipped without it)
 )
 missing=()
 for p in "${packages[@]}"; do

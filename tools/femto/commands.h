@@ -18,5 +18,6 @@ Command addFramesCommand(CLI::App& app);
 Command addStreakCommand(CLI::App& app);
 Command addIntegrateCommand(CLI::App& app);
 Command addProfileCommand(CLI::App& app);
+Command addViewCommand(CLI::App& app);
 
 }  // namespace femto::cli

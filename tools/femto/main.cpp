@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   femto::cli::Command streak = femto::cli::addStreakCommand(app);
   femto::cli::Command integrate = femto::cli::addIntegrateCommand(app);
   femto::cli::Command profile = femto::cli::addProfileCommand(app);
+  femto::cli::Command view = femto::cli::addViewCommand(app);
 
   if (std::string message = unknownCommand(argc, argv, app); !message.empty()) {
     std::cerr << message;
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("streak")) return streak();
     if (app.got_subcommand("integrate")) return integrate();
     if (app.got_subcommand("profile")) return profile();
+    if (app.got_subcommand("view")) return view();
     return 1;  // unreachable: require_subcommand(1)
   } catch (const femto::cli::UsageError& e) {
     std::cerr << "error: " << e.what() << '\n';
