@@ -8,6 +8,9 @@ packages=(
   libgtest-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   python3-numpy python3-matplotlib
   ffmpeg  # femto frames --gif/--mp4 (run as a program, not linked)
+  # The femto Python module (src/python): pybind11 headers and the Python
+  # headers to build it for /usr/bin/python3; pytest runs its tests under ctest.
+  pybind11-dev python3-dev python3-pytest
 )
 missing=()
 for p in "${packages[@]}"; do

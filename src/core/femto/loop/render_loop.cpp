@@ -75,7 +75,7 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
   const Sampler& prototype = scene.sensor().sampler();
   std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  ProgressReporter progress("Rendering", pixelsTotal, options.progress);
+  ProgressReporter progress("Rendering", pixelsTotal, options.progress, options.onProgress);
   bool cancelled = false;
   RenderStats stats;
 
