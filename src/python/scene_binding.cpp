@@ -79,7 +79,8 @@ py::list plugins() {
   });
   py::list list;
   for (const PluginDescriptor* p : found)
-    list.append(py::make_tuple(std::string(p->name), std::string(kindTag(p->kind)), std::string(p->description ? p->description : "")));
+    list.append(py::make_tuple(std::string(p->name), std::string(kindTag(p->kind)),
+                               std::string(p->description ? p->description : "")));
   return list;
 }
 
@@ -101,14 +102,15 @@ void bindScene(py::module_& m) {
       py::arg("file"), py::arg("defines"), py::arg("strict"), py::arg("spp"), py::arg("resolution"));
   m.def(
       "load_string",
-      [](const std::string& xml, const std::filesystem::path& baseDir, const std::map<std::string, std::string>& defines,
-         bool strict, std::optional<int> spp, std::optional<std::pair<int, int>> resolution, const std::string& name) {
+      [](const std::string& xml, const std::filesystem::path& baseDir,
+         const std::map<std::string, std::string>& defines, bool strict, std::optional<int> spp,
+         std::optional<std::pair<int, int>> resolution, const std::string& name) {
         LoadOptions options = loadOptions(defines, strict, spp, resolution);
         py::gil_scoped_release release;
         return loadSceneFromString(xml, baseDir, options, name);
       },
-      py::arg("xml"), py::arg("base_dir"), py::arg("defines"), py::arg("strict"), py::arg("spp"),
-      py::arg("resolution"), py::arg("name"));
+      py::arg("xml"), py::arg("base_dir"), py::arg("defines"), py::arg("strict"), py::arg("spp"), py::arg("resolution"),
+      py::arg("name"));
   m.def("plugins", &plugins, "(name, kind, description) of every plugin on the search path");
   m.def(
       "add_plugin_dir", [](const std::filesystem::path& dir) { PluginManager::instance().prependSearchPath(dir); },

@@ -21,7 +21,8 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
 void requireRgb(const FloatArray& a, const char* what) {
-  if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3) throw Error(str(what, " expects an array whose last axis is RGB (3)"));
+  if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
+    throw Error(str(what, " expects an array whose last axis is RGB (3)"));
 }
 
 /// The exposure (stops) that maps the `percentile` of all non-black voxels'

@@ -13,11 +13,11 @@ namespace femto {
 
 /// What the progress bar shows.
 struct ProgressState {
-  std::string label;           // "Rendering"
-  double fraction = 0.0;       // of the work done, 0..1
+  std::string label;      // "Rendering"
+  double fraction = 0.0;  // of the work done, 0..1
   double elapsedSeconds = 0.0;
-  double etaSeconds = -1.0;    // estimated seconds left; negative while unknown (nothing done yet) and when finished
-  bool finished = false;       // the last report of this bar
+  double etaSeconds = -1.0;  // estimated seconds left; negative while unknown (nothing done yet) and when finished
+  bool finished = false;     // the last report of this bar
 };
 /// Called as the bar would be redrawn (at most every 100 ms, from whichever
 /// worker thread updates it, never by two threads at once) and once at the end.
