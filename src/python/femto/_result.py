@@ -34,7 +34,7 @@ class TimeAxis:
 class Progress:
     """What the CLI's progress bar shows, handed to render(progress=...)."""
     label: str
-    fraction: float          # of the pass done, 0..1 (a progressive integrator reports each pass)
+    fraction: float          # of the whole job done, 0..1 (every pass, then the frames), as the CLI's bar
     elapsed: float           # seconds
     eta: Optional[float]     # seconds left, linear extrapolation; None while unknown and when finished
     finished: bool
