@@ -6,7 +6,7 @@ SCENE ?= scenes/cornell-box/scene.xml
 OUT ?= out/cornell-box.exr
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps configure build build-render render test sanitize sanitize-thread clean
+.PHONY: all deps configure build build-render render python test sanitize sanitize-thread clean
 
 all: build
 
@@ -24,6 +24,10 @@ build: configure
 # Only the CLI and the plugins: the tests are built by `make test`.
 build-render: configure
 	cmake --build $(BUILD) -j $(JOBS) --target femto_render
+
+# The femto Python module in $(BUILD)/python (PYTHONPATH=$(BUILD)/python; docs/python.md).
+python: configure
+	cmake --build $(BUILD) -j $(JOBS) --target femto_python
 
 render: build-render
 	$(BUILD)/bin/femto render $(SCENE) -o $(OUT)

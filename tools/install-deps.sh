@@ -10,6 +10,9 @@ packages=(
   python3-numpy python3-matplotlib
   ffmpeg  # femto frames --gif/--mp4 (run as a program, not linked)
   chromium  # the femto view test drives the viewer page in headless Chromium (skipped without it)
+  # The femto Python module (src/python): pybind11 headers and the Python
+  # headers to build it for /usr/bin/python3; pytest runs its tests under ctest.
+  pybind11-dev python3-dev python3-pytest
 )
 missing=()
 for p in "${packages[@]}"; do

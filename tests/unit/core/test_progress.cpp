@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -27,6 +28,30 @@ TEST(ProgressReporter, SilentWhenStderrIsNotATerminal) {
     EXPECT_GE(progress.elapsedSeconds(), 0.0);
   }
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+// The callback gets what the bar shows, terminal or not, bar enabled or not:
+// a throttled report while running (fraction done, an ETA extrapolated from
+// the time so far) and a last one marked finished.
+TEST(ProgressReporter, CallbackGetsFractionEtaAndTheFinalReport) {
+  std::vector<ProgressState> reports;
+  {
+    ProgressReporter progress("render", 4, /*enabled=*/false, [&](const ProgressState& s) { reports.push_back(s); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(120));  // past the redraw interval
+    progress.update(1);
+    progress.finish();
+    progress.finish();  // reported once
+  }
+  ASSERT_EQ(reports.size(), 2u);
+  EXPECT_EQ(reports[0].label, "render");
+  EXPECT_DOUBLE_EQ(reports[0].fraction, 0.25);
+  EXPECT_FALSE(reports[0].finished);
+  // One quarter took elapsed seconds: three more quarters take three times that.
+  EXPECT_NEAR(reports[0].etaSeconds, 3 * reports[0].elapsedSeconds, 1e-9);
+  EXPECT_GE(reports[0].elapsedSeconds, 0.1);
+  EXPECT_TRUE(reports[1].finished);
+  EXPECT_DOUBLE_EQ(reports[1].fraction, 0.25);
+  EXPECT_LT(reports[1].etaSeconds, 0.0);
 }
 
 }  // namespace

@@ -27,10 +27,11 @@ std::string formatDuration(double seconds) {
 
 }  // namespace
 
-ProgressReporter::ProgressReporter(std::string label, uint64_t total, bool enabled)
+ProgressReporter::ProgressReporter(std::string label, uint64_t total, bool enabled, ProgressCallback callback)
     : label_(std::move(label)),
       total_(total),
       enabled_(enabled && isatty(STDERR_FILENO)),
+      callback_(std::move(callback)),
       start_(Clock::now()),
       lastDraw_(start_ - RedrawInterval) {}
 
@@ -42,33 +43,46 @@ double ProgressReporter::elapsedSeconds() const {
 
 void ProgressReporter::update(uint64_t delta) {
   uint64_t done = done_.fetch_add(delta) + delta;
-  if (!enabled_) return;
+  if (!enabled_ && !callback_) return;
   // try_lock: a worker never waits for another one that is drawing.
   std::unique_lock<std::mutex> lock(drawMutex_, std::try_to_lock);
   if (!lock.owns_lock() || finished_) return;
   auto now = Clock::now();
   if (now - lastDraw_ < RedrawInterval) return;
   lastDraw_ = now;
-  draw(done, false);
+  ProgressState current = state(done, false);
+  if (enabled_) draw(current);
+  if (callback_) callback_(current);
 }
 
 void ProgressReporter::finish() {
   std::lock_guard<std::mutex> lock(drawMutex_);
   if (finished_) return;
   finished_ = true;
-  if (enabled_) draw(done_.load(), true);
+  ProgressState last = state(done_.load(), true);
+  if (enabled_) draw(last);
+  if (callback_) callback_(last);
 }
 
-void ProgressReporter::draw(uint64_t done, bool final) {
-  double fraction = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
-  int filled = int(fraction * BarWidth + 0.5);
-  double elapsed = elapsedSeconds();
+ProgressState ProgressReporter::state(uint64_t done, bool final) const {
+  ProgressState s;
+  s.label = label_;
+  s.fraction = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
+  s.elapsedSeconds = elapsedSeconds();
+  // Linear extrapolation of the time per unit of work done so far.
+  if (s.fraction > 0 && !final) s.etaSeconds = s.elapsedSeconds * (1 - s.fraction) / s.fraction;
+  s.finished = final;
+  return s;
+}
+
+void ProgressReporter::draw(const ProgressState& s) {
+  int filled = int(s.fraction * BarWidth + 0.5);
   std::string bar(size_t(filled), '#');
   bar.append(size_t(BarWidth - filled), ' ');
-  std::string eta = fraction > 0 && !final ? ", ETA " + formatDuration(elapsed * (1 - fraction) / fraction) : "";
+  std::string eta = s.etaSeconds >= 0 ? ", ETA " + formatDuration(s.etaSeconds) : "";
   // \r and clear-to-end-of-line: the bar overwrites itself on one line.
-  std::fprintf(stderr, "\r%s [%s] %5.1f%% (%s%s)\033[K%s", label_.c_str(), bar.c_str(), fraction * 100.0,
-               formatDuration(elapsed).c_str(), eta.c_str(), final ? "\n" : "");
+  std::fprintf(stderr, "\r%s [%s] %5.1f%% (%s%s)\033[K%s", s.label.c_str(), bar.c_str(), s.fraction * 100.0,
+               formatDuration(s.elapsedSeconds).c_str(), eta.c_str(), s.finished ? "\n" : "");
   std::fflush(stderr);
 }
 

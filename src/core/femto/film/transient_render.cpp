@@ -38,7 +38,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
   // frames, counted as one more pass (they read the whole volume back).
   const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
   const uint64_t frameUnits = output.writesFrames() ? pixels : 0;
-  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)) + frameUnits, options.progress);
+  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)) + frameUnits, options.progress,
+                            options.onProgress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
     std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));

@@ -75,21 +75,30 @@ void writeEXR(const std::filesystem::path& path, const Bitmap& image, const std:
   });
 }
 
-void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure) {
-  checkImage(path, image);
+Bitmap encodeSRGB(const Bitmap& image, float exposure) {
   const float scale = std::exp2(exposure);
   Bitmap encoded = image;
   for (size_t i = 0; i < image.data.size(); ++i) {
     bool alpha = image.channels == 4 && i % 4 == 3;  // alpha is linear coverage, not a colour
     encoded.data[i] = alpha ? std::clamp(image.data[i], 0.0f, 1.0f) : linearToSRGB(image.data[i] * scale);
   }
-  writeDisplayImage(path, encoded);
+  return encoded;
+}
+
+std::vector<uint8_t> quantize8(const Bitmap& image) {
+  std::vector<uint8_t> bytes(image.data.size());
+  for (size_t i = 0; i < image.data.size(); ++i) bytes[i] = uint8_t(std::clamp(image.data[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+  return bytes;
+}
+
+void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure) {
+  checkImage(path, image);
+  writeDisplayImage(path, encodeSRGB(image, exposure));
 }
 
 void writeDisplayImage(const std::filesystem::path& path, const Bitmap& image) {
   checkImage(path, image);
-  std::vector<uint8_t> bytes(image.data.size());
-  for (size_t i = 0; i < image.data.size(); ++i) bytes[i] = uint8_t(std::clamp(image.data[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+  std::vector<uint8_t> bytes = quantize8(image);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     auto out = OIIO::ImageOutput::create(tmp.string());
     if (!out) throw Error(str("cannot write \"", path.string(), "\": ", OIIO::geterror()));

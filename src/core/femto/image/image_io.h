@@ -2,6 +2,7 @@
 // Image files. OpenEXR for float data, OpenImageIO for everything else
 // (PNG previews, textures). Writes go to a temporary file in the same folder
 // and are renamed into place, so a reader never sees a half-written file.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ void writeEXR(const std::filesystem::path& path, const Bitmap& image);
 void writeEXR(const std::filesystem::path& path, const Bitmap& image, const std::vector<std::string>& channelNames);
 /// Write an 8-bit sRGB PNG preview: linear value * 2^exposure, clamped, sRGB-encoded.
 void writePNG(const std::filesystem::path& path, const Bitmap& image, float exposure = 0.0f);
+/// What writePNG stores, before quantisation: linear value * 2^exposure,
+/// sRGB-encoded (a 4th channel is coverage: only clamped).
+Bitmap encodeSRGB(const Bitmap& image, float exposure);
+/// What writeDisplayImage stores: display values clamped to [0, 1], 8 bits
+/// (rounded to nearest), in the image's channel order.
+std::vector<uint8_t> quantize8(const Bitmap& image);
 /// Write display-encoded values in [0, 1] (already tone mapped and
 /// gamma-encoded; clamped) as 8 bits per channel, in the format the
 /// extension names (PNG, JPEG, ... as OpenImageIO writes them).

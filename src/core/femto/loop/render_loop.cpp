@@ -100,7 +100,8 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
   std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize(), tileSideWithin(tileBytesPerPixel, tokens));
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
   std::optional<ProgressReporter> ownProgress;
-  ProgressReporter& progress = jobProgress ? *jobProgress : ownProgress.emplace("Rendering", pixelsTotal, options.progress);
+  ProgressReporter& progress =
+      jobProgress ? *jobProgress : ownProgress.emplace("Rendering", pixelsTotal, options.progress, options.onProgress);
   const auto start = std::chrono::steady_clock::now();
   bool cancelled = false;
   RenderStats stats;
@@ -211,7 +212,7 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
   // One bar for all passes: its ETA is that of the whole render.
   const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)), options.progress);
+  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)), options.progress, options.onProgress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
     CameraRadianceFunction radiance = radianceOf(pass);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include <femto/core/object.h>
+#include <femto/core/progress.h>
 #include <femto/core/properties.h>
 #include <femto/math/ray.h>
 #include <femto/math/spectrum.h>
@@ -22,6 +23,7 @@ struct RenderOptions {
   std::filesystem::path output;            // output file (the film may write previews beside it); empty: nothing written
   bool progress = true;                    // progress bar (only drawn on a TTY)
   const std::atomic<bool>* cancel = nullptr;  // set to stop early (Ctrl-C); a valid partial image is written
+  ProgressCallback onProgress;             // also given what the bar shows (empty: nothing); for embedding (Python)
 };
 
 /// What a render did, for the CLI and tests.

@@ -1,0 +1,171 @@
+"""Scenes and their render: the CLI's loader and render driver, files to arrays."""
+import os
+import shutil
+import tempfile
+import weakref
+from pathlib import Path
+
+import numpy as np
+
+from . import _femto
+from ._result import Progress, RenderResult, TimeAxis
+
+# Volumes larger than this (bytes) come back as a memory map over the streamed
+# .npy instead of a copy in memory (render(memory_limit=...) overrides it).
+DEFAULT_MEMORY_LIMIT = 1 << 30
+
+
+def _define_text(value):
+    """A Python value as the XML would write it (-D name=value)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+class Scene:
+    """A loaded scene. render(spp=N) with another sample count reloads the scene
+    with that count (the CLI's --spp), so it renders exactly what
+    `femto render --spp N` renders."""
+
+    def __init__(self, loader, spp, native):
+        self._loader = loader  # spp -> the native scene loaded with that sample count
+        self._scenes = {spp: native}
+        self._default_spp = spp
+
+    def _native(self, spp):
+        if spp not in self._scenes:
+            self._scenes[spp] = self._loader(spp)
+        return self._scenes[spp]
+
+    @property
+    def info(self) -> dict:
+        """Film size, crop, sample count, integrator and, for a transient film, its time axis."""
+        return self._native(self._default_spp).describe()
+
+    @property
+    def time_axis(self):
+        info = self.info
+        return TimeAxis(info["bins"], info["start_opl"], info["bin_width_opl"]) if info["transient"] else None
+
+    def __repr__(self):
+        return repr(self._native(self._default_spp))
+
+    def render(self, spp=None, seed=0, threads=None, progress=None, output=None, memory_limit=None, tmp_dir=None):
+        """Render with the scene's integrator, as `femto render` does.
+
+        spp: samples per pixel (None: the scene's). seed: the base seed (the
+        arrays depend only on scene, spp and seed, not on threads). threads:
+        worker threads (None: all cores). progress: called with a Progress as
+        the CLI's bar is redrawn. output: keep the files `femto render -o
+        output` writes there (None: render into a temporary folder, removed
+        once the arrays no longer need it). memory_limit: volumes of more
+        bytes are returned as a read-only np.memmap of the .npy (default 1 GiB).
+        tmp_dir: where the temporary folder goes (default: tempfile's).
+
+        Ctrl-C stops the render after the tiles in flight and raises
+        KeyboardInterrupt with the partial RenderResult as its `.result`; an
+        exception raised by `progress` stops it the same way.
+        """
+        if threads is not None and int(threads) < 1:
+            raise ValueError(f"threads must be a whole number >= 1, got {threads}")
+        if spp is not None and int(spp) < 1:
+            raise ValueError(f"spp must be a whole number >= 1, got {spp}")
+        if seed < 0:
+            raise ValueError(f"seed must be >= 0, got {seed}")
+        native = self._native(None if spp is None else int(spp))
+        limit = DEFAULT_MEMORY_LIMIT if memory_limit is None else int(memory_limit)
+        temporary = None
+        if output is None:
+            temporary = tempfile.mkdtemp(prefix="femto-render-", dir=tmp_dir)
+            output = Path(temporary) / ("render" + native.describe()["extension"])
+        output = Path(output)
+        callback = None if progress is None else (lambda state: progress(Progress(**state)))
+        try:
+            stats = _femto.render(native, output, int(seed), 0 if threads is None else int(threads), callback)
+            result = _collect(native, output, stats, limit, temporary)
+        except BaseException:
+            if temporary:
+                shutil.rmtree(temporary, ignore_errors=True)
+            raise
+        stopped_by = stats["stopped_by"]
+        if stopped_by is not None:
+            stopped_by.result = result
+            raise stopped_by
+        return result
+
+
+def _read_optional_image(path):
+    return _femto.read_image(path) if path is not None and Path(path).exists() else None
+
+
+def _collect(native, output, stats, limit, temporary):
+    """The arrays of the files just written; a temporary folder is removed now,
+    or when the memory-mapped volume is released."""
+    info = native.describe()
+    paths = native.output_paths(output)
+    steady = _femto.read_image(paths["steady"])[:, :, :3]
+    transient = before = after = time_axis = None
+    if info["transient"]:
+        time_axis = TimeAxis(info["bins"], info["start_opl"], info["bin_width_opl"])
+        before, after = _read_optional_image(paths["before"]), _read_optional_image(paths["after"])
+        volume = Path(paths["volume"])
+        if volume.exists():
+            mapped = np.load(volume, mmap_mode="r")
+            if mapped.nbytes > limit:
+                transient = mapped
+            else:
+                transient = np.array(mapped)  # a copy: the file can go
+                del mapped
+    if temporary:
+        if isinstance(transient, np.memmap):
+            # Everything but the volume and its sidecar (the time window
+            # femto.compare checks) goes now; those go with the map's last view.
+            keep = {volume.name, volume.with_suffix(".json").name}
+            for entry in Path(temporary).iterdir():
+                if entry.name not in keep:
+                    shutil.rmtree(entry) if entry.is_dir() else entry.unlink()
+            weakref.finalize(transient, shutil.rmtree, temporary, True)
+        else:
+            shutil.rmtree(temporary, ignore_errors=True)
+        files = {}
+    else:
+        files = {k: Path(v) for k, v in paths.items() if Path(v).exists()}
+    return RenderResult(steady=steady, transient=transient, before=before, after=after, time_axis=time_axis,
+                        completed=stats["completed"], samples=stats["samples"],
+                        invalid_samples=stats["invalid_samples"], seconds=stats["seconds"], files=files)
+
+
+def _split_options(defines, given):
+    merged = dict(defines or {})
+    merged.update(given)
+    return {str(k): _define_text(v) for k, v in merged.items()}
+
+
+def load_file(path, *, strict=False, film_size=None, defines=None, **kwargs) -> Scene:
+    """Load a Mitsuba 0.6 / Mitsuba 3 / mitransient XML scene file.
+
+    Keyword arguments are the CLI's -D name=value: they set <default> values
+    and $name (`defines=` takes a dict, for names that clash with the options).
+    strict: parameters nobody read are errors (the CLI's --strict).
+    film_size: (width, height) overriding the film's (the CLI's --resolution;
+    not called resolution, which scenes use as a define, as the fog box does).
+    Raises SceneError naming the file and line."""
+    path = os.fspath(path)
+    values = _split_options(defines, kwargs)
+
+    def loader(spp):
+        return _femto.load_file(path, values, strict, spp, film_size)
+
+    return Scene(loader, None, loader(None))
+
+
+def load_string(xml, base_dir=".", *, strict=False, film_size=None, name="<string>", defines=None, **kwargs) -> Scene:
+    """Load a scene from XML text; meshes and includes resolve against base_dir.
+    `name` is the file name errors give. Other arguments as load_file."""
+    base = os.fspath(base_dir)
+    values = _split_options(defines, kwargs)
+
+    def loader(spp):
+        return _femto.load_string(xml, base, values, strict, spp, film_size, name)
+
+    return Scene(loader, None, loader(None))
