@@ -10,7 +10,7 @@ namespace {
 // A signal handler may only touch lock-free atomics.
 static_assert(std::atomic<bool>::is_always_lock_free);
 std::atomic<bool> gCancel{false};
-struct sigaction gPrevious;
+struct sigaction gPrevious, gPreviousUsr1;
 
 void writeStderr(const char* message) {
   // write(2) is async-signal-safe; iostreams and printf are not.
@@ -34,9 +34,13 @@ InterruptGuard::InterruptGuard() {
   action.sa_handler = onInterrupt;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, &gPrevious);
+  sigaction(SIGUSR1, &action, &gPreviousUsr1);
 }
 
-InterruptGuard::~InterruptGuard() { sigaction(SIGINT, &gPrevious, nullptr); }
+InterruptGuard::~InterruptGuard() {
+  sigaction(SIGINT, &gPrevious, nullptr);
+  sigaction(SIGUSR1, &gPreviousUsr1, nullptr);
+}
 
 const std::atomic<bool>& InterruptGuard::cancelFlag() const { return gCancel; }
 

@@ -1,13 +1,16 @@
 #pragma once
 // Ctrl-C handling for renders: the first SIGINT asks the render loop to stop
 // (it still writes a valid partial image); a second one exits at once.
+// SIGUSR1 asks the same as the first Ctrl-C: Open MPI's mpirun forwards it to
+// every rank (`kill -USR1 <mpirun>`), while a Ctrl-C on mpirun ends the
+// ranks at once (it cannot forward SIGINT), writing nothing.
 #include <atomic>
 
 namespace femto::cli {
 
 class InterruptGuard {
  public:
-  /// Installs the SIGINT handler; the previous handler is restored on destruction.
+  /// Installs the SIGINT and SIGUSR1 handlers; the previous ones are restored on destruction.
   InterruptGuard();
   ~InterruptGuard();
   InterruptGuard(const InterruptGuard&) = delete;

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <vector>
 
+#include <femto/core/log.h>
 #include <femto/core/progress.h>
 #include <femto/render/scene.h>
 
@@ -78,27 +79,40 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
     progress.update(uint64_t(tile.size.x) * uint64_t(tile.size.y));
   };
 
+  std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
   LocalTiles local(job);
   bool localOpen = true;
-  std::vector<float> buffer;
-  for (;;) {
-    bool busy = false;
+  auto feedLocal = [&] {
     while (localOpen && local.pending() < local.wanted()) {
       std::vector<uint64_t> ids = handOut(1);
       if (ids.empty()) local.close(), localOpen = false;
-      for (uint64_t id : ids) local.assign(&tiles[id]);
+      for (uint64_t id : ids) local.assign(&tiles[id]), ++perRank[0];
     }
+  };
+  auto answer = [&](int rank) {
+    uint64_t count = 0;
+    check(MPI_Recv(&count, 1, MPI_UINT64_T, rank, Request, comm_, MPI_STATUS_IGNORE), "receive");
+    std::vector<uint64_t> ids = handOut(count);
+    if (ids.empty()) --workersOpen;
+    perRank[size_t(rank)] += ids.size();
+    check(MPI_Send(ids.data(), int(ids.size()), MPI_UINT64_T, rank, Assign, comm_), "send");
+  };
+  // The first round in rank order, waiting for every rank's first request:
+  // every rank starts with work (whoever loaded the scene first), and which
+  // rank renders the first tiles does not depend on start-up timing.
+  feedLocal();
+  for (int rank = 1; rank < size_; ++rank) answer(rank);
+  std::vector<float> buffer;
+  for (;;) {
+    bool busy = false;
+    feedLocal();
     int flag = 0;
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &status), "probe");
     if (flag) {
       busy = true;
       if (status.MPI_TAG == Request) {
-        uint64_t count = 0;
-        check(MPI_Recv(&count, 1, MPI_UINT64_T, status.MPI_SOURCE, Request, comm_, MPI_STATUS_IGNORE), "receive");
-        std::vector<uint64_t> ids = handOut(count);
-        if (ids.empty()) --workersOpen;
-        check(MPI_Send(ids.data(), int(ids.size()), MPI_UINT64_T, status.MPI_SOURCE, Assign, comm_), "send");
+        answer(status.MPI_SOURCE);
       } else if (status.MPI_TAG == TileData) {
         int floats = 0;
         MPI_Get_count(&status, MPI_FLOAT, &floats);
@@ -135,6 +149,9 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   stats.completed = !cancelled;
   stats.seconds = progress.elapsedSeconds();
   reportTileStream(stats);
+  std::string counts;
+  for (size_t n : perRank) counts += str(" ", n);
+  logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts);
   return stats;
 }
 
