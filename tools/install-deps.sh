@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   python3-numpy python3-matplotlib
   ffmpeg  # femto frames --gif/--mp4 (run as a program, not linked)
+  libopenmpi-dev openmpi-bin  # optional: mpirun -n N femto render (tools/femto/mpi/) and its tests
 )
 missing=()
 for p in "${packages[@]}"; do

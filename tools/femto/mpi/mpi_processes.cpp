@@ -54,8 +54,7 @@ RenderProcesses::~RenderProcesses() {
 }
 
 void RenderProcesses::abortJob(const std::string& message) const {
-  std::cerr << "error: " << (count_ > 1 ? str("rank ", rank_, " of ", count_, ": ") : std::string()) << message
-            << '\n';
+  std::cerr << "error: " << (count_ > 1 ? str("rank ", rank_, " of ", count_, ": ") : std::string()) << message << '\n';
   if (joined_) MPI_Abort(MPI_COMM_WORLD, 1);
   std::exit(1);
 }

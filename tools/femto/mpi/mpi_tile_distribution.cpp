@@ -80,6 +80,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   };
 
   std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
+  uint64_t bytesReceived = 0, tilesReceived = 0;
   LocalTiles local(job);
   bool localOpen = true;
   auto feedLocal = [&] {
@@ -127,6 +128,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
         tile.accumulator = job.makeTile(tile.offset, tile.size);
         tile.accumulator->unpack(buffer.data() + HeaderFloats, buffer.size() - HeaderFloats);
         tile.samples = header.samples, tile.invalid = header.invalid;
+        bytesReceived += uint64_t(floats) * sizeof(float), ++tilesReceived;
         arrived(tile);
       } else {
         throw Error(str("rank ", status.MPI_SOURCE, " sent an unexpected message (tag ", status.MPI_TAG, ")"));
@@ -151,7 +153,8 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   reportTileStream(stats);
   std::string counts;
   for (size_t n : perRank) counts += str(" ", n);
-  logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts);
+  logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
+           bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)");
   return stats;
 }
 
