@@ -41,8 +41,11 @@ run() {
 median() { cut -d' ' -f"$2" "$1" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 runs_of() { cut -d' ' -f"$2" "$1" | tr '\n' ' ' | sed 's/ $//'; }
 
-path_args="-D resolution=128 -D bins=256 -D bin_width=0.04 -D spp=16 -D frames=false"
-beams_args="-D integrator=transient_beams -D resolution=64 -D bins=256 -D bin_width=0.04 -D passes=4 -D frames=false"
+# 128 x 128: 16 tiles, so both ranks render some (rank 0 takes 2 x threads + 2 first).
+path_args="-D resolution=128 -D bins=256 -D bin_width=0.04 -D spp=48 -D frames=false"
+beams_args="-D integrator=transient_beams -D resolution=128 -D spp=8 -D bins=256 -D bin_width=0.04 -D passes=4 -D frames=false"
+# Next to nothing to render: what starting a job costs (loading plugins and scene, MPI_Init).
+start_args="-D resolution=8 -D bins=16 -D bin_width=0.64 -D spp=1 -D frames=false"
 i=0
 while [ "$i" -lt "$runs" ]; do
   # shellcheck disable=SC2086
@@ -53,6 +56,10 @@ while [ "$i" -lt "$runs" ]; do
   run beams1 0 $beams_args
   # shellcheck disable=SC2086
   run beams2 2 $beams_args
+  # shellcheck disable=SC2086
+  run start1 0 $start_args
+  # shellcheck disable=SC2086
+  run start2 2 $start_args
   i=$((i + 1))
 done
 for f in path beams; do
@@ -62,6 +69,11 @@ load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 . tools/bench/provenance.sh
 # efficiency NAME: CPU time of one process / CPU time of the 2-rank job.
 efficiency() { awk -v a="$(median "$work/${1}1" 1)" -v b="$(median "$work/${1}2" 1)" 'BEGIN { printf "%.2f", a / b }'; }
+# render_efficiency NAME: the same without the start-up cost of each side.
+render_efficiency() {
+  awk -v a="$(median "$work/${1}1" 1)" -v b="$(median "$work/${1}2" 1)" -v s1="$(median "$work/start1" 1)" \
+    -v s2="$(median "$work/start2" 1)" 'BEGIN { printf "%.2f", (a - s1) / (b - s2) }'
+}
 speedup() { awk -v a="$(median "$work/${1}1" 2)" -v b="$(median "$work/${1}2" 2)" 'BEGIN { printf "%.2f", a / b }'; }
 per_tile() { sed -n 's/.*received \([0-9]*\) tiles, \([0-9]*\) bytes (\([0-9]*\) per tile).*/\1 tiles, \3 bytes per tile/p' "$1" | head -n 1; }
 out=docs/BENCHMARKS.md
@@ -79,12 +91,15 @@ out=docs/BENCHMARKS.md
   echo "- commit: $commit$dirty, $(date -u +%Y-%m-%d)"
   echo "- command: \`tools/bench/run_mpi_bench.sh\` ($runs runs per case, medians; the volumes of 1 and 2 ranks compared bit for bit)"
   echo
-  echo "| render | CPU 1 process (s) | CPU 2 ranks (s) | efficiency | wall 1 (s) | wall 2 (s) | wall speedup | sent to rank 0 |"
-  echo "|---|---|---|---|---|---|---|---|"
+  echo "| render | CPU 1 process (s) | CPU 2 ranks (s) | efficiency | without start-up | wall 1 (s) | wall 2 (s) | wall speedup | sent to rank 0 |"
+  echo "|---|---|---|---|---|---|---|---|---|"
   for f in path beams; do
     if [ "$f" = path ]; then label="transient_path \`$path_args\`"; else label="transient_beams \`$beams_args\`"; fi
-    echo "| $label | $(median "$work/${f}1" 1) | $(median "$work/${f}2" 1) | **$(efficiency $f)** | $(median "$work/${f}1" 2) | $(median "$work/${f}2" 2) | $(speedup $f) | $(per_tile "$work/${f}2.log") |"
+    echo "| $label | $(median "$work/${f}1" 1) | $(median "$work/${f}2" 1) | **$(efficiency $f)** | $(render_efficiency $f) | $(median "$work/${f}1" 2) | $(median "$work/${f}2" 2) | $(speedup $f) | $(per_tile "$work/${f}2.log") |"
   done
+  echo
+  echo "Start-up (\`$start_args\`): CPU $(median "$work/start1" 1) s for one process, $(median "$work/start2" 1) s for two"
+  echo "ranks; \"without start-up\" subtracts these from each side."
   echo
   echo "CPU times of the runs (s): transient_path 1: $(runs_of "$work/path1" 1); 2: $(runs_of "$work/path2" 1);"
   echo "transient_beams 1: $(runs_of "$work/beams1" 1); 2: $(runs_of "$work/beams2" 1)."

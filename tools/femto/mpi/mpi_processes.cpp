@@ -9,6 +9,7 @@
 #include <femto/core/log.h>
 
 #include "mpi_tile_distribution.h"
+#include "mpi_wait.h"
 #include "render_processes.h"
 
 namespace femto::cli {
@@ -50,6 +51,11 @@ RenderProcesses::~RenderProcesses() {
   if (!joined_) return;
   setTileDistribution(nullptr);
   gDistribution.reset();
+  // The other ranks wait here while rank 0 writes the outputs: sleeping, not
+  // in MPI_Finalize (which would spin).
+  MPI_Request barrier;
+  MPI_Ibarrier(MPI_COMM_WORLD, &barrier);
+  waitSleeping(barrier);
   MPI_Finalize();
 }
 

@@ -8,6 +8,7 @@
 #include <femto/render/scene.h>
 
 #include "local_tiles.h"
+#include "mpi_wait.h"
 
 namespace femto::cli {
 namespace {
@@ -19,10 +20,6 @@ struct TileHeader {
 };
 constexpr size_t HeaderFloats = sizeof(TileHeader) / sizeof(float);
 static_assert(sizeof(TileHeader) % sizeof(float) == 0);
-
-/// How long an idle main thread sleeps before polling MPI again: short next
-/// to a tile's render time (milliseconds), long enough not to spin a core.
-constexpr std::chrono::microseconds PollInterval(200);
 
 void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw Error(str("MPI ", what, " failed (error ", code, ")"));
@@ -46,8 +43,12 @@ RenderStats MpiTileDistribution::shareStats(const RenderStats& stats) {
   // the stream completed (after a cancel every rank stops together).
   uint64_t counts[3] = {stats.completed ? 1u : 0u, stats.samples, stats.invalidSamples};
   double seconds = stats.seconds;
-  check(MPI_Bcast(counts, 3, MPI_UINT64_T, 0, comm_), "broadcast");
-  check(MPI_Bcast(&seconds, 1, MPI_DOUBLE, 0, comm_), "broadcast");
+  // Non-blocking and waited for sleeping: the other ranks wait here while
+  // rank 0 folds its last tiles.
+  MPI_Request requests[2];
+  check(MPI_Ibcast(counts, 3, MPI_UINT64_T, 0, comm_, &requests[0]), "broadcast");
+  check(MPI_Ibcast(&seconds, 1, MPI_DOUBLE, 0, comm_, &requests[1]), "broadcast");
+  for (MPI_Request& request : requests) waitSleeping(request);
   RenderStats shared;
   shared.completed = counts[0] != 0;
   shared.samples = counts[1], shared.invalidSamples = counts[2];
@@ -90,9 +91,12 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
       for (uint64_t id : ids) local.assign(&tiles[id]), ++perRank[0];
     }
   };
+  // Receives `rank`'s request (sleeping while it has not come) and answers it.
   auto answer = [&](int rank) {
     uint64_t count = 0;
-    check(MPI_Recv(&count, 1, MPI_UINT64_T, rank, Request, comm_, MPI_STATUS_IGNORE), "receive");
+    MPI_Request request;
+    check(MPI_Irecv(&count, 1, MPI_UINT64_T, rank, Request, comm_, &request), "receive");
+    waitSleeping(request);
     std::vector<uint64_t> ids = handOut(count);
     if (ids.empty()) --workersOpen;
     perRank[size_t(rank)] += ids.size();
@@ -189,7 +193,9 @@ void MpiTileDistribution::work(TileJob& job) {
       buffer.insert(buffer.begin(), HeaderFloats, 0.0f);
       std::memcpy(buffer.data(), &header, sizeof(header));
       tile->accumulator.reset();
-      check(MPI_Send(buffer.data(), int(buffer.size()), MPI_FLOAT, 0, TileData, comm_), "send");
+      MPI_Request request;
+      check(MPI_Isend(buffer.data(), int(buffer.size()), MPI_FLOAT, 0, TileData, comm_, &request), "send");
+      waitSleeping(request);  // until rank 0 takes it (it may be folding tiles)
     }
     if (!busy) local.waitForFinished(PollInterval);
   }
