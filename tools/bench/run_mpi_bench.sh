@@ -5,7 +5,10 @@
 #   (a) transient_path, and
 #   (b) transient_beams (several passes: every rank builds each pass's photon
 #       maps itself),
-# and what travels between the ranks (rank 0's debug log: bytes per tile).
+# what travels between the ranks (rank 0's debug log: bytes per tile), and
+#   (c) what rank 0 pays per pass and bin-pixel to fold a pass into the
+#       volume (one process, 4096 bins, 1 against 3 passes of almost no
+#       camera work), for the scaling model written below the section.
 # Runs are interleaved (1, 2, 1, 2, ...); medians of RUNS runs (default 3).
 # CPU time is of the whole job: mpirun and every rank (all are waited for).
 #   tools/bench/run_mpi_bench.sh [build-dir]      (default: build)
@@ -44,6 +47,7 @@ runs_of() { cut -d' ' -f"$2" "$1" | tr '\n' ' ' | sed 's/ $//'; }
 # 128 x 128: 16 tiles, so both ranks render some (rank 0 takes 2 x threads + 2 first).
 path_args="-D resolution=128 -D bins=256 -D bin_width=0.04 -D spp=48 -D frames=false"
 beams_args="-D integrator=transient_beams -D resolution=128 -D spp=8 -D bins=256 -D bin_width=0.04 -D passes=4 -D frames=false"
+fold_args="-D integrator=transient_beams -D resolution=64 -D bins=4096 -D bin_width=0.0025 -D spp=1 -D photon_count=1000 -D beam_photon_count=100 -D frames=false"
 # Next to nothing to render: what starting a job costs (loading plugins and scene, MPI_Init).
 start_args="-D resolution=8 -D bins=16 -D bin_width=0.64 -D spp=1 -D frames=false"
 i=0
@@ -56,6 +60,10 @@ while [ "$i" -lt "$runs" ]; do
   run beams1 0 $beams_args
   # shellcheck disable=SC2086
   run beams2 2 $beams_args
+  # shellcheck disable=SC2086
+  run fold1 0 $fold_args -D passes=1
+  # shellcheck disable=SC2086
+  run fold3 0 $fold_args -D passes=3
   # shellcheck disable=SC2086
   run start1 0 $start_args
   # shellcheck disable=SC2086
@@ -91,7 +99,7 @@ out=docs/BENCHMARKS.md
   echo "- commit: $commit$dirty, $(date -u +%Y-%m-%d)"
   echo "- command: \`tools/bench/run_mpi_bench.sh\` ($runs runs per case, medians; the volumes of 1 and 2 ranks compared bit for bit)"
   echo
-  echo "| render | CPU 1 process (s) | CPU 2 ranks (s) | efficiency | without start-up | wall 1 (s) | wall 2 (s) | wall speedup | sent to rank 0 |"
+  echo "| render | CPU 1 process (s) | CPU 2 ranks (s) | efficiency | without start-up | wall 1 (s) | wall 2 (s) | wall speedup | sent to rank 0 (pass 0) |"
   echo "|---|---|---|---|---|---|---|---|---|"
   for f in path beams; do
     if [ "$f" = path ]; then label="transient_path \`$path_args\`"; else label="transient_beams \`$beams_args\`"; fi
@@ -100,6 +108,11 @@ out=docs/BENCHMARKS.md
   echo
   echo "Start-up (\`$start_args\`): CPU $(median "$work/start1" 1) s for one process, $(median "$work/start2" 1) s for two"
   echo "ranks; \"without start-up\" subtracts these from each side."
+  echo
+  fold_ns=$(awk -v a="$(median "$work/fold1" 1)" -v b="$(median "$work/fold3" 1)" 'BEGIN { printf "%.1f", (b - a) / 2 / (64 * 64 * 4096) * 1e9 }')
+  echo "Folding a pass into a 4096-bin volume (\`$fold_args\`, passes 1 against 3; one process):"
+  echo "CPU $(median "$work/fold1" 1) s and $(median "$work/fold3" 1) s, so **$fold_ns ns per pass and bin-pixel** (runs: $(runs_of "$work/fold1" 1); $(runs_of "$work/fold3" 1));"
+  echo "it includes the pass's 1 spp camera work and photons, so it is an upper bound."
   echo
   echo "CPU times of the runs (s): transient_path 1: $(runs_of "$work/path1" 1); 2: $(runs_of "$work/path2" 1);"
   echo "transient_beams 1: $(runs_of "$work/beams1" 1); 2: $(runs_of "$work/beams2" 1)."

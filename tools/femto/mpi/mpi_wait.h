@@ -9,9 +9,11 @@
 
 namespace femto::cli {
 
-/// How long an idle main thread sleeps before polling MPI again: short next
-/// to a tile's render time (milliseconds), long enough not to spin a core.
-inline constexpr std::chrono::microseconds PollInterval(200);
+/// How long an idle main thread sleeps before polling MPI again (a finished
+/// local tile wakes it at once): short next to a tile's render time (tens of
+/// milliseconds and more; the ranks keep 2 x threads + 2 tiles assigned, so a
+/// late answer costs nothing), long enough that waking costs little.
+inline constexpr std::chrono::microseconds PollInterval(1000);
 
 /// Completes `request` (a non-blocking operation), sleeping between tests.
 inline void waitSleeping(MPI_Request& request) {
