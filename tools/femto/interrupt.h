@@ -1,16 +1,19 @@
 #pragma once
-// Ctrl-C handling for renders: the first SIGINT asks the render loop to stop
-// (it still writes a valid partial image); a second one exits at once.
-// SIGUSR1 asks the same as the first Ctrl-C: Open MPI's mpirun forwards it to
-// every rank (`kill -USR1 <mpirun>`), while a Ctrl-C on mpirun ends the
-// ranks at once (it cannot forward SIGINT), writing nothing.
+// Signals during a render. The first Ctrl-C (SIGINT) asks the render loop to
+// stop: it finishes the tiles in flight and writes a valid partial image (exit
+// code 130). A second Ctrl-C, SIGTERM or SIGHUP ends the process at once: the
+// temporary files of outputs not yet complete are removed (temp_files.h) and
+// the process dies by that signal, so a parent sees it was killed (the shell
+// reports 128 + the signal number; Python's returncode is minus it).
+// SIGUSR1 counts as a Ctrl-C: Open MPI's mpirun forwards it to every rank
+// (`kill -USR1 <mpirun>`), while a Ctrl-C on mpirun sends the ranks SIGTERM.
 #include <atomic>
 
 namespace femto::cli {
 
 class InterruptGuard {
  public:
-  /// Installs the SIGINT and SIGUSR1 handlers; the previous ones are restored on destruction.
+  /// Installs the handlers; the previous ones are restored on destruction.
   InterruptGuard();
   ~InterruptGuard();
   InterruptGuard(const InterruptGuard&) = delete;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -83,9 +84,11 @@ LoadOptions loadOptions(const RenderSettings& settings) {
   return options;
 }
 
-void printSummary(const fs::path& output, const RenderStats& stats, bool interrupted) {
+/// `seconds`: wall time of the whole job (every pass and every file written),
+/// not only of the tile loops that stats.seconds sums.
+void printSummary(const fs::path& output, const RenderStats& stats, double seconds, bool interrupted) {
   std::cout << std::fixed << std::setprecision(3) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
-            << stats.seconds << " s (" << stats.samples << " samples)\n";
+            << seconds << " s (" << stats.samples << " samples)\n";
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " of ", stats.samples,
             " samples were NaN, infinite or negative and were left out of the image: the integrator has a bug");
@@ -114,9 +117,11 @@ int renderHere(const RenderSettings& settings, const RenderProcesses& processes)
   if (!processes.writes()) options.output.clear();
   InterruptGuard interrupt;
   options.cancel = &interrupt.cancelFlag();
+  const auto start = std::chrono::steady_clock::now();
   RenderStats stats = scene->integrator().render(*scene, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!processes.writes()) return 0;
-  printSummary(output, stats, interrupt.interrupted());
+  printSummary(output, stats, seconds, interrupt.interrupted());
   // 128 + SIGINT tells scripts the image is partial.
   return interrupt.interrupted() ? 130 : 0;
 }

@@ -1,6 +1,8 @@
 #include "mpi_tile_distribution.h"
 
+#include <chrono>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include <femto/core/log.h>
@@ -33,6 +35,12 @@ MpiTileDistribution::MpiTileDistribution(MPI_Comm comm) : comm_(comm) {
 }
 
 RenderStats MpiTileDistribution::run(TileJob& job) {
+  // Every rank must cut the same tiles: the side shrinks with a rank's thread
+  // count when tiles are huge (tileSideWithin), so take the smallest, which
+  // fits every rank's memory bound.
+  int side = job.tileSide;
+  check(MPI_Allreduce(MPI_IN_PLACE, &side, 1, MPI_INT, MPI_MIN, comm_), "reduce");
+  if (side != job.tileSide) job.tiles = cropWindowTiles(job.scene, side), job.tileSide = side;
   if (rank_ == 0) return shareStats(coordinate(job));
   work(job);
   return shareStats(RenderStats());
@@ -57,8 +65,13 @@ RenderStats MpiTileDistribution::shareStats(const RenderStats& stats) {
 }
 
 RenderStats MpiTileDistribution::coordinate(TileJob& job) {
+  // The job's bar when the stream is part of a longer job (passes, frames), else one of its own.
   const Point2i crop = job.scene.sensor().film().cropSize();
-  ProgressReporter progress("Rendering", uint64_t(crop.x) * uint64_t(crop.y), job.options.progress);
+  std::optional<ProgressReporter> ownProgress;
+  ProgressReporter& progress =
+      job.progress ? *job.progress
+                   : ownProgress.emplace("Rendering", uint64_t(crop.x) * uint64_t(crop.y), job.options.progress);
+  const auto start = std::chrono::steady_clock::now();
   std::vector<RenderTile>& tiles = job.tiles;
   size_t next = 0, consumed = 0;
   bool cancelled = false;
@@ -151,9 +164,9 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
     if (!localOpen && workersOpen == 0 && consumed == next && local.done()) break;
     if (!busy) local.waitForFinished(PollInterval);
   }
-  progress.finish();
+  if (ownProgress) ownProgress->finish();
   stats.completed = !cancelled;
-  stats.seconds = progress.elapsedSeconds();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   reportTileStream(stats);
   std::string counts;
   for (size_t n : perRank) counts += str(" ", n);

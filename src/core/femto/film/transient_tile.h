@@ -81,6 +81,10 @@ class TransientTile final : public TileAccumulator {
   void pack(std::vector<float>& out) const override;
   void unpack(const float* data, size_t count) override;
 
+  /// Memory per pixel at most: the bins and, for continuous pulses, their
+  /// step derivative (bins x 3 floats each), plus the RGB sums and weight.
+  static double bytesPerPixel(int bins) { return (2.0 * 3.0 * double(bins) + 10.0) * sizeof(float); }
+
   const Point2i& offset() const { return offset_; }
   const Point2i& size() const { return size_; }
   int bins() const { return bins_; }

@@ -16,6 +16,8 @@
 
 namespace femto {
 
+class ProgressReporter;
+
 /// One tile of a render: where it is, what it accumulated, its sample counts.
 struct RenderTile {
   size_t index = 0;  // position in tile order (row-major over the crop window)
@@ -30,11 +32,14 @@ struct TileJob {
   const RenderOptions& options;
   const TileFactory& makeTile;
   const TileConsumer& consume;
+  ProgressReporter* progress;     // the bar of the whole job, advanced per pixel; null: the stream draws its own
+  int tileSide;                   // of the tiles below (tileSideWithin: smaller with more threads for huge tiles)
   std::vector<RenderTile> tiles;  // every tile of the crop window, in tile order
 };
 
-/// The crop window's tiles in tile order (accumulators not yet made).
-std::vector<RenderTile> cropWindowTiles(const Scene& scene);
+/// The crop window's tiles of side `side` (tileSideWithin), in tile order
+/// (accumulators not yet made).
+std::vector<RenderTile> cropWindowTiles(const Scene& scene, int side);
 
 /// Render the tiles `claim` hands out (null: no more) in parallel, with the
 /// options' thread count, passing each finished tile to `deliver` serially
