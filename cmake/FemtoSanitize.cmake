@@ -25,5 +25,7 @@ if(FEMTO_FUZZ)
     message(FATAL_ERROR "FEMTO_FUZZ needs clang (-DCMAKE_CXX_COMPILER=clang++), not ${CMAKE_CXX_COMPILER_ID}")
   endif()
   add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -g)
-  add_link_options(-fsanitize=address,undefined)
+  # -shared-libsan: plugins are shared libraries linked with --no-undefined;
+  # clang would put the sanitizer runtime only into executables.
+  add_link_options(-fsanitize=address,undefined -shared-libsan)
 endif()

@@ -18,9 +18,11 @@
 
 namespace femto::test {
 
-/// Load a whole scene from XML in strict mode (plugins from the build tree).
+/// Load a whole scene from XML in strict mode (plugins from the build tree);
+/// errors name the file `name`.
 inline std::shared_ptr<Scene> loadSceneStrict(const std::string& xml,
-                                              const std::filesystem::path& dir = std::filesystem::temp_directory_path()) {
+                                              const std::filesystem::path& dir = std::filesystem::temp_directory_path(),
+                                              const std::string& name = "<media test>") {
   static bool searchPathSet = [] {
     PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
     return true;
@@ -28,7 +30,7 @@ inline std::shared_ptr<Scene> loadSceneStrict(const std::string& xml,
   (void)searchPathSet;
   LoadOptions options;
   options.strict = true;
-  return loadSceneFromString(xml, dir, options, "<media test>");
+  return loadSceneFromString(xml, dir, options, name);
 }
 
 /// The medium with id "m" of a scene whose sensor sits in it:

@@ -11,6 +11,9 @@ namespace femto::test {
 class CollectingRecorder final : public RadianceRecorder {
  public:
   explicit CollectingRecorder(double horizon = Infinity) : horizon_(horizon) {}
+  /// A recorder of a transient film's window: `grid`, with horizon grid.end()
+  /// (a box time filter); it keeps every contribution, in the window or not.
+  explicit CollectingRecorder(const TimeGrid& grid) : horizon_(grid.end()), grid_(grid) {}
   void add(double opl, const Color3f& value) override { addPulsed(opl, opl, value, EmissionPulse()); }
   void addInterval(double opl0, double opl1, const Color3f& value) override {
     addPulsed(opl0, opl1, value, EmissionPulse());

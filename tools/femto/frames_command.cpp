@@ -53,7 +53,10 @@ fs::path outputDir(const FramesSettings& settings) {
 
 int writeFramePngs(const FramesSettings& settings) {
   const NpyVolume volume = NpyVolume::open(settings.volume);
-  const auto [first, end] = parseBinRange(settings.bins, volume.bins());
+  // Not a structured binding: the lambdas below capture these, which clang
+  // before 16 refuses (the fuzz build, tools/fuzz, uses Debian's clang 14).
+  const auto range = parseBinRange(settings.bins, volume.bins());
+  const int first = range.first, end = range.second;
   fs::path ffmpeg;
   if (settings.gif || settings.mp4) ffmpeg = findFfmpeg(settings.gif ? "--gif" : "--mp4");  // fail before the work
   const bool cumulative = settings.runningIntegral;

@@ -15,7 +15,21 @@
 // light (transport/equiangular.h: density ~ 1/r^2) over the whole segment, and
 // MIS-weighted against the free-flight vertex's next-event estimate. Without
 // it, next-event estimates from free-flight vertices near a point light have
-// infinite variance (fireflies ~ 1/r^2). Paths end by
+// infinite variance (fireflies ~ 1/r^2).
+//
+// Time gating (time_gating = true; temporal importance sampling): the
+// equiangular vertex is sampled only over the part of its segment from which
+// a straight connection to the light arrives inside the film's window
+// (transport/time_gate.h: the distances between two ellipsoids with foci at
+// the segment's start and the light; He et al., "DARTS", SIGGRAPH Asia 2024,
+// sample on this interval), and the free-flight vertex's MIS weight uses that
+// same density, so the estimate stays unbiased for any window; segments that
+// cannot reach the window spend no equiangular vertex at all. A short window
+// late in time then gets one next-event estimate per segment that lands in it,
+// where free flights put only a small share of theirs there. Off by default:
+// with it the samples depend on the window, so a render split into windows is
+// equal to one render within noise only, not bit for bit
+// (test_transient_time_window_split.cpp). Paths end by
 // Russian roulette on the throughput, at max_depth, or once their OPL passes
 // the film's horizon.
 //
@@ -44,6 +58,8 @@
 // | rr_depth        | integer | 5       | depth from which Russian roulette may end paths    | -    |
 // | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
 // | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
+// | equiangular     | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
+// | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time window | - |
 // | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
 // | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
 // | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins |
@@ -57,6 +73,7 @@
 // defaults to 6, as in mitransient) and `transientpath` (Mitsuba 2's
 // transient path tracer). Their output is that of transient_path with the
 // same parameters, bit for bit.
+#include <algorithm>
 #include <cmath>
 
 #include <femto/core/plugin.h>
@@ -65,6 +82,7 @@
 #include <femto/transport/direct_lighting.h>
 #include <femto/transport/equiangular.h>
 #include <femto/transport/optical_path.h>
+#include <femto/transport/time_gate.h>
 #include <femto/transport/transient_emission.h>
 #include <femto/render/medium.h>
 #include <femto/render/path_depth.h>
@@ -91,6 +109,10 @@ struct PathState : OpticalPath {
   // (hit distance or Infinity).
   bool equiangular = false;
   float segmentMax = 0.0f;
+  // Time gating: the OPL window contributions must reach, and the OPL where
+  // the segment starts when it counts toward the OPL (else -Infinity: no gate).
+  OplGate gate;
+  double segmentStartOpl = -Infinity;
 };
 
 }  // namespace
@@ -105,7 +127,9 @@ class TransientPathIntegrator : public TransientIntegrator {
   explicit TransientPathIntegrator(const Properties& props, const TransientPathDefaults& defaults = {})
       : depth_(PathDepthSettings::read(props, defaults.maxDepth)),
         hideEmitters_(props.getBool("hide_emitters", false)),
-        observerTime_(props.getBool("observer_time", true)) {
+        observerTime_(props.getBool("observer_time", true)),
+        equiangular_(props.getBool("equiangular", true)),
+        timeGating_(props.getBool("time_gating", false)) {
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
       if (props.has("observer_time"))
@@ -125,6 +149,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
     s.vertex = s.prev.p = cameraRay.o;
+    if (timeGating_) s.gate = oplGate(scene, recorder);
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
@@ -162,7 +187,9 @@ class TransientPathIntegrator : public TransientIntegrator {
 
   std::string toString() const override {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
-               ", observer_time=", observerTime_ ? "true" : "false", "]");
+               ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
+               ", time_gating=", timeGating_ ? "true" : "false",
+               "]");
   }
 
  private:
@@ -220,18 +247,51 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// whether next-event estimation also samples it equiangularly (homogeneous
   /// medium, and a vertex on it may still connect to a light: depth).
   void beginMediumSegment(PathState& s, float tMax) const {
-    s.equiangular = s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
+    s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
+    s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
+  }
+
+  /// The OPLs (for a Dirac emission at 0) from which a contribution can reach
+  /// the film's bins: before the window start by the time filter's reach and
+  /// the latest pulse emission, up to the recorder's horizon. Everything for
+  /// steady films, an unbounded horizon or continuous emission (whose step
+  /// reaches every later bin).
+  static OplGate oplGate(const Scene& scene, const RadianceRecorder& recorder) {
+    OplGate gate;
+    const TimeGrid& grid = recorder.timeGrid();
+    if (!grid.isTransient() || scene.emitters().empty()) return gate;
+    double earliest = Infinity, latest = -Infinity;
+    for (const auto& emitter : scene.emitters()) {
+      earliest = std::min(earliest, emitter->pulse().earliest());
+      latest = std::max(latest, emitter->pulse().latest());
+    }
+    gate.end = recorder.horizon();
+    // horizon = window end + filter reach - earliest emission (pulsedHorizon).
+    double filterReach = gate.end - grid.end() + earliest;
+    double start = grid.start - filterReach - latest;
+    if (std::isfinite(start)) gate.start = start;
+    return gate;
   }
 
   /// The part of the current segment equiangular sampling covers for a light
   /// at `c`: all of it, up to the hit. The same for sampling and for the MIS
   /// weight of free-flight vertices, so the two strategies' weights sum to one.
-  /// Not cut at the film's horizon: the samples would then depend on the
-  /// time window, and a render split into windows would no longer give the
-  /// bins of one render exactly (test_transient_time_window_split.cpp).
+  /// Without time gating not cut at the film's horizon: the samples would
+  /// then depend on the time window, and a render split into windows would no
+  /// longer give the bins of one render exactly
+  /// (test_transient_time_window_split.cpp). With time gating, only the distances whose straight connection to the
+  /// light arrives in the gate (the medium's eta along both pieces; phase
+  /// delays and other media make some land outside, which costs variance,
+  /// not bias: both strategies use this density).
   EquiangularSegment equiangularToward(const PathState& s, const Point3f& c) const {
-    return equiangularSegment(s.ray.o, s.ray.d, s.segmentMax, c);
+    if (!s.gate.gates() || !std::isfinite(s.segmentStartOpl))
+      return equiangularSegment(s.ray.o, s.ray.d, s.segmentMax, c);
+    double eta = s.medium->eta();
+    DistanceRange range = distancesArrivingWithin(s.ray.o, s.ray.d, c, (s.gate.start - s.segmentStartOpl) / eta,
+                                                  (s.gate.end - s.segmentStartOpl) / eta);
+    float tStart = float(std::max(range.t0, 0.0)), tEnd = float(std::min(range.t1, double(s.segmentMax)));
+    return equiangularSegment(s.ray.o, s.ray.d, tStart, tEnd, c);
   }
 
   /// Next-event estimation from a medium vertex whose distance along the
@@ -341,6 +401,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   PathDepthSettings depth_;
   bool hideEmitters_;
   bool observerTime_;
+  bool equiangular_;
+  bool timeGating_;
   bool discardDirectLight_ = false;
 };
 

@@ -199,12 +199,20 @@ TEST(LoaderDialects, IntegratorsOfOtherRenderersFailNamingTheTypeLineAndWhatToUs
   }
 }
 
-TEST(LoaderDialects, MitransientNlosSensorAndPhasorFilmFailNamingWhatToUse) {
+TEST(LoaderDialects, MitransientNlosSensorLoadsAndPhasorFilmFailsNamingWhatToUse) {
+  // The capture meter and its integrator are femto's own now (transient_nlos_path).
+  auto scene = loadStrict(
+      "<scene version=\"3.0.0\">\n<integrator type=\"transient_nlos_path\"/>\n<shape type=\"rectangle\">\n"
+      "<sensor type=\"nlos_capture_meter\"><boolean name=\"confocal\" value=\"True\"/>\n"
+      "<emitter type=\"projector\"><float name=\"fov\" value=\"0.2\"/></emitter></sensor></shape></scene>");
+  EXPECT_NE(scene->sensor().toString().find("NlosCaptureMeter[sensor_origin="), std::string::npos)
+      << scene->sensor().toString();
+  // Mitsuba 2's spelling is pointed to mitransient's.
   std::string message = loadertest::errorOf([&] {
-    loadStrict("<scene version=\"3.0.0\">\n<shape type=\"rectangle\">\n<sensor type=\"nlos_capture_meter\"/></shape></scene>");
+    loadStrict("<scene version=\"3.0.0\">\n<shape type=\"rectangle\">\n<sensor type=\"nloscapturemeter\"/></shape></scene>");
   });
   EXPECT_EQ(message.rfind("dialect.xml:3: ", 0), 0u) << message;
-  EXPECT_NE(message.find("non-line-of-sight rendering is not supported yet"), std::string::npos) << message;
+  EXPECT_NE(message.find("use mitransient's nlos_capture_meter"), std::string::npos) << message;
   message = loadertest::errorOf([&] {
     loadStrict(sceneWith(TransientPath, "<film type=\"phasor_hdr_film\"/>"));
   });

@@ -29,6 +29,10 @@ class OrientedPointEmitter : public Emitter {
 
   float pdfDirection(const Point3f&, const DirectionSample&) const override { return 0.0f; }
 
+  /// Where the light sits and how it is turned (NLOS integrators aim a laser
+  /// from its own frame: transient_nlos_path).
+  const Transform& toWorld() const { return toWorld_; }
+
  protected:
   /// Radiant intensity toward unit direction `d` of the light's frame (+z forward).
   virtual Color3f intensityInLocal(const Vec3f& d) const = 0;

@@ -4,6 +4,7 @@
 
 #include <femto/core/log.h>
 #include <femto/render/default_child.h>
+#include <femto/render/nlos_sensor.h>
 #include <femto/render/detail/embree_accel.h>
 #include <femto/render/shape_group.h>
 #include <femto/render/transient_integrator.h>
@@ -19,7 +20,9 @@ struct Scene::Accel : detail::EmbreeAccel {
 /// emitters at infinity: say so rather than write such an image without a word.
 void Scene::warnIfEmpty(const Properties& props) const {
   std::string where = props.location().known() ? props.location().toString() + ": " : std::string();
-  if (emitters_.empty()) logWarn(where, "the scene has no emitter: the image will be black");
+  // A non-line-of-sight capture meter may hold the scene's light, its laser.
+  auto* nlos = dynamic_cast<const NlosSensor*>(sensor_.get());
+  if (emitters_.empty() && !(nlos && nlos->nestedLaser())) logWarn(where, "the scene has no emitter: the image will be black");
   if (shapes_.empty()) logWarn(where, "the scene has no shape: only emitters at infinity can be seen");
 }
 

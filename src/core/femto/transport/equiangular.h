@@ -13,21 +13,24 @@
 
 namespace femto {
 
-/// A ray segment o + t d, t in [0, tEnd] (unit d; tEnd may be Infinity)
+/// A ray segment o + t d, t in [tStart, tEnd] (unit d; tEnd may be Infinity)
 /// seen from a point `c`.
 struct EquiangularSegment {
   double delta = 0.0;   // t of the point of the line closest to c
   double height = 0.0;  // distance from c to the line
-  double thetaA = 0.0, thetaB = 0.0;  // angles at c of t = 0 and t = tEnd, measured from the closest point
-  float tEnd = 0.0f;
+  double thetaA = 0.0, thetaB = 0.0;  // angles at c of t = tStart and t = tEnd, measured from the closest point
+  float tStart = 0.0f, tEnd = 0.0f;
   /// False when the segment is empty or c lies on its line (no density).
   bool valid() const { return thetaB > thetaA && height > 0.0; }
 };
 
 EquiangularSegment equiangularSegment(const Point3f& o, const Vec3f& d, float tEnd, const Point3f& c);
+/// The part [tStart, tEnd] of the segment (time-gated sampling,
+/// transport/time_gate.h, samples only where contributions reach the window).
+EquiangularSegment equiangularSegment(const Point3f& o, const Vec3f& d, float tStart, float tEnd, const Point3f& c);
 /// Distance for `u` in [0, 1), with its density; requires seg.valid().
 float sampleEquiangular(const EquiangularSegment& seg, float u, float& pdf);
-/// Density of sampleEquiangular at t (0 outside [0, tEnd] or for an invalid segment).
+/// Density of sampleEquiangular at t (0 outside [tStart, tEnd] or for an invalid segment).
 float pdfEquiangular(const EquiangularSegment& seg, float t);
 
 }  // namespace femto

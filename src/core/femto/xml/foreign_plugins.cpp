@@ -21,9 +21,9 @@ std::string adviceForForeignBSDF(const std::string& name) {
 
 std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
   if (kind == ObjectKind::BSDF) return adviceForForeignBSDF(name);
-  if (kind == ObjectKind::Sensor && (name == "nlos_capture_meter" || name == "nloscapturemeter"))
-    return " (mitransient's non-line-of-sight capture meter: non-line-of-sight rendering is not supported yet; "
-           "for line-of-sight transient renders use a perspective sensor with a transient_hdr_film)";
+  if (kind == ObjectKind::Sensor && name == "nloscapturemeter")
+    return " (Mitsuba 2's non-line-of-sight capture meter: use mitransient's nlos_capture_meter, which femto has, "
+           "with the transient_nlos_path integrator)";
   if (kind == ObjectKind::Film && name == "phasor_hdr_film")
     return " (mitransient's phasor film is not supported; use transient_hdr_film and take the phasor of the .npy volume)";
   if (kind != ObjectKind::Integrator) return "";
@@ -43,8 +43,7 @@ std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
       {"pathguiding", "path guiding is not part of femto"},
       {"ppg", "practical path guiding is not part of femto"},
       {"guided_volpath", "volumetric path guiding is not part of femto"},
-      {"transient_nlos_path", "non-line-of-sight rendering is not supported yet"},
-      {"transientnlospath", "non-line-of-sight rendering is not supported yet"},
+      {"transientnlospath", "Mitsuba 2's NLOS path tracer: use mitransient's name, transient_nlos_path"},
   };
   auto it = advice.find(name);
   if (it == advice.end()) return "";

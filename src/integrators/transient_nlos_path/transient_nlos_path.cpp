@@ -1,0 +1,290 @@
+// transient_nlos_path: mitransient's path tracer for non-line-of-sight (NLOS)
+// captures (Royo et al., "Non-line-of-sight transient rendering", Computers &
+// Graphics 107, 2022). It renders with an nlos_capture_meter: each camera
+// ray runs from the sensor to a point on the relay wall; from there paths
+// bounce into the hidden scene and back, and light comes only from the laser
+// (a projector with a tiny fov aimed at a wall point, aimed_laser.h). Every
+// contribution is recorded at its exact optical path length (OPL: the sum of
+// its segment lengths times the refractive index crossed, scene units; plus
+// BSDF scattering delays)
+// with the laser's pulse, as transient_path does.
+//
+// Estimators at each surface vertex x of a path that has k segments so far:
+//  - next-event estimation to the laser: x -> laser (k + 1 segments);
+//  - laser sampling (nlos_laser_sampling): a ray emitted by the laser picks
+//    the wall point y it lights; x connects to y and y to the laser
+//    (k + 2 segments). The estimate is f_x * f_y * I / p(omega) * cos_y /
+//    |x - y|^2, unbiased for any spot size: y has area density
+//    p(omega) cos_y' / |y - laser|^2. With it on, next-event estimation is
+//    kept only at the first vertex (the path sensor -> wall -> laser), since
+//    every longer path ending at the lit spot is laser-sampled from its
+//    previous vertex: each path is counted by exactly one strategy.
+//  - the next direction comes from the BSDF, or with nlos_hidden_geometry_sampling
+//    from a point on the hidden geometry (hidden_geometry.h), or, with
+//    _do_rroulette, from either with probability 1/2 (one-sample mixture,
+//    density 0.5 p_bsdf + 0.5 p_hidden). Vertices with delta BSDF lobes sample
+//    their BSDF only.
+// Emission of area emitters the path meets is not counted: an NLOS scene is
+// lit by its laser. No participating media.
+//
+// Depth counts segments, as max_depth in femto and mitransient: the direct
+// path sensor -> wall -> laser has 2, the third bounce sensor -> wall ->
+// hidden object -> wall -> laser has 4.
+//
+// | name                 | type    | default | meaning                                                     | unit |
+// |----------------------|---------|---------|-------------------------------------------------------------|------|
+// | max_depth            | integer | 6       | longest path in segments (-1: no limit); mitransient's default | - |
+// | rr_depth             | integer | 5       | depth from which Russian roulette may end paths             | -    |
+// | filter_depth         | integer | -1      | record only paths of exactly this many segments (-1: all)   | -    |
+// | filter_bounces       | integer | -1      | mitransient's other spelling: filter_depth = filter_bounces + 1 | - |
+// | discard_direct_paths | boolean | false   | drop the 2-segment paths sensor -> wall -> laser           | -    |
+// | nlos_laser_sampling  | boolean | false   | connect each vertex to the spot the laser lights            | -    |
+// | nlos_hidden_geometry_sampling | boolean | false | sample directions toward the hidden geometry        | -    |
+// | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random
+// (1/2 each) | - | | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as
+// hidden geometry | - | | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own),
+// "box", "gaussian" | - | | gaussian_stddev      | float   | 2       | its standard deviation | bins | | block_size |
+// integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
+//
+// With the capture meter's account_first_and_last_bounces = false every
+// contribution's OPL drops |sensor - watched wall point| + |laser - aimed
+// wall point|, as mitransient does. The capture is deterministic for a seed
+// whatever the thread count: every pixel's samples come from its own
+// sampler stream (the tile loop), and this integrator keeps no state.
+#include <cmath>
+
+#include <femto/core/plugin.h>
+#include <femto/render/bsdf.h>
+#include <femto/render/nlos_sensor.h>
+#include <femto/render/path_depth.h>
+#include <femto/render/sampler.h>
+#include <femto/render/scene.h>
+#include <femto/render/transient_integrator.h>
+
+#include "aimed_laser.h"
+#include "hidden_geometry.h"
+
+namespace femto {
+namespace {
+
+/// One camera path: where it is, its OPL there and what it carries.
+struct NlosPath {
+  SurfaceInteraction si;
+  double opl = 0.0;    // OPL from the sensor to si.p
+  Color3f beta{1.0f};  // throughput
+  int segments = 1;    // the camera segment
+  float eta = 1.0f;    // refractive index where the path is (inside a dielectric: the product of its refractions)
+};
+
+/// What every contribution of one camera sample shares.
+struct Capture {
+  const AimedLaser& laser;
+  double oplShift;  // subtracted from every OPL (account_first_and_last_bounces = false)
+  RadianceRecorder& recorder;
+};
+
+}  // namespace
+
+class TransientNlosPath final : public TransientIntegrator {
+ public:
+  explicit TransientNlosPath(const Properties& props) : depth_(PathDepthSettings::read(props, 6)) {
+    filterDepth_ = int(props.getInt("filter_depth", -1, -1, 1 << 20));
+    if (props.has("filter_bounces")) {
+      if (props.has("filter_depth"))
+        props.raise("filter_bounces", "give either filter_depth or filter_bounces, not both");
+      filterDepth_ = int(props.getInt("filter_bounces", -1, -1, 1 << 20));
+      if (filterDepth_ >= 0) ++filterDepth_;
+    }
+    discardDirect_ = props.getBool("discard_direct_paths", false);
+    laserSampling_ = props.getBool("nlos_laser_sampling", false);
+    hiddenSampling_ = props.getBool("nlos_hidden_geometry_sampling", false);
+    hiddenRoulette_ = props.getBool("nlos_hidden_geometry_sampling_do_rroulette", false) && hiddenSampling_;
+    hiddenIncludesWall_ = props.getBool("nlos_hidden_geometry_sampling_includes_relay_wall", false) && hiddenSampling_;
+    readTemporalFilter(props);
+    props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
+  }
+
+  /// Checks the set-up once, before any tile runs, so a wrong scene fails
+  /// with one message instead of rendering black.
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override {
+    const NlosSensor& sensor = nlosSensor(scene);
+    const Emitter& emitter = laserOf(scene, sensor);
+    if (!emitter.isDelta())
+      throw Error(str(toString(), ": the laser must be a light at a point (a projector with a small fov), not ",
+                      emitter.toString()));
+    Ray probe;
+    sensor.sampleRay(Point2f(0.5f), Point2f(0.5f), probe);  // places the wall points (errors name the wall)
+    sensor.laserTarget(sensor.relayWall().bbox().center());
+    if (hiddenSampling_ && HiddenGeometry(scene, &sensor.relayWall(), hiddenIncludesWall_).empty())
+      throw Error(str(toString(),
+                      ": nlos_hidden_geometry_sampling is on but the scene has no hidden geometry "
+                      "with area to sample"));
+    return TransientIntegrator::render(scene, options);
+  }
+
+  void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
+    const NlosSensor* sensor = dynamic_cast<const NlosSensor*>(&scene.sensor());
+    if (!sensor || depth_.maxDepth == 0) return;
+    NlosPath path;
+    if (!scene.rayIntersect(cameraRay, path.si)) return;
+    path.opl = path.si.t;
+    const Point3f target = sensor->laserTarget(path.si.p);
+    AimedLaser laser(laserOf(scene, *sensor), sensor->laserOrigin(), target);
+    double shift = sensor->accountsFirstAndLastBounces() ? 0.0 : path.si.t + distance(laser.origin(), target);
+    Capture capture{laser, shift, recorder};
+    std::optional<HiddenGeometry> hidden;
+    if (hiddenSampling_) hidden.emplace(scene, &sensor->relayWall(), hiddenIncludesWall_);
+
+    while (true) {
+      const BSDF* bsdf = path.si.bsdf();
+      if (!bsdf) return;
+      if (bsdf->hasDelay()) path.opl += bsdf->sampleDelay(sampler.next1D());
+      if (path.opl - shift >= recorder.horizon()) return;
+      if (bsdf->hasSmooth()) {
+        if (!laserSampling_ || path.segments == 1) nextEventLaser(scene, path, *bsdf, capture);
+        if (laserSampling_) laserSample(scene, path, *bsdf, sampler, capture);
+      }
+      // The shortest contribution a further vertex can make: k + 2 segments
+      // (next-event), k + 3 when only laser sampling connects it.
+      int shortestNext = path.segments + (laserSampling_ ? 3 : 2);
+      if (!depth_.depthAllowed(shortestNext) || (filterDepth_ >= 0 && shortestNext > filterDepth_)) return;
+      if (!continuePath(scene, path, *bsdf, hidden ? &*hidden : nullptr, sampler)) return;
+      if (path.segments >= depth_.rrDepth) {
+        float q = std::min(path.beta.maxValue(), 0.95f);
+        if (!(sampler.next1D() < q)) return;
+        path.beta = path.beta / q;
+      }
+    }
+  }
+
+  std::string toString() const override {
+    return str("TransientNlosPath[", depth_.toString(), ", filter_depth=", filterDepth_,
+               ", discard_direct_paths=", discardDirect_, ", nlos_laser_sampling=", laserSampling_,
+               ", nlos_hidden_geometry_sampling=", hiddenSampling_, "]");
+  }
+
+ private:
+  static const NlosSensor& nlosSensor(const Scene& scene) {
+    auto* sensor = dynamic_cast<const NlosSensor*>(&scene.sensor());
+    if (!sensor)
+      throw Error(
+          str("transient_nlos_path renders non-line-of-sight captures: nest an nlos_capture_meter in the "
+              "relay wall (the scene's sensor is ",
+              scene.sensor().toString(), ")"));
+    return *sensor;
+  }
+
+  /// The laser: the emitter nested in the capture meter, or the scene's only one.
+  static const Emitter& laserOf(const Scene& scene, const NlosSensor& sensor) {
+    if (const Emitter* nested = sensor.nestedLaser()) {
+      if (!scene.emitters().empty())
+        throw Error(str("transient_nlos_path: the capture meter holds its laser and the scene has ",
+                        scene.emitters().size(), " more emitter(s); an NLOS scene has exactly one, the laser"));
+      return *nested;
+    }
+    if (scene.emitters().size() != 1)
+      throw Error(
+          str("transient_nlos_path: an NLOS scene has exactly one emitter, the laser (nested in the "
+              "nlos_capture_meter or at top level); this one has ",
+              scene.emitters().size()));
+    return *scene.emitters().front();
+  }
+
+  /// Is a contribution of `segments` segments recorded?
+  bool recorded(int segments) const {
+    if (!depth_.depthAllowed(segments)) return false;
+    if (filterDepth_ >= 0 && segments != filterDepth_) return false;
+    return !(discardDirect_ && segments <= 2);
+  }
+
+  void deposit(const Capture& c, double opl, const Color3f& value) const {
+    if (value.isBlack() || !std::isfinite(value.maxValue())) return;
+    c.recorder.addPulsed(opl - c.oplShift, opl - c.oplShift, value, c.laser.emitter().pulse());
+  }
+
+  /// Next-event estimation from the path's vertex to the laser.
+  void nextEventLaser(const Scene& scene, const NlosPath& path, const BSDF& bsdf, const Capture& c) const {
+    if (!recorded(path.segments + 1)) return;
+    DirectionSample ds;
+    Color3f Le = c.laser.incident(path.si.p, ds);
+    if (Le.isBlack() || path.opl + path.eta * ds.dist - c.oplShift >= c.recorder.horizon()) return;
+    Color3f f = bsdf.eval(path.si, path.si.toLocal(ds.d));
+    if (f.isBlack() || scene.rayTest(path.si.spawnRayTo(ds.p))) return;
+    deposit(c, path.opl + path.eta * ds.dist, path.beta * f * Le);
+  }
+
+  /// Laser sampling: the laser's own ray picks the lit wall point y; the
+  /// path connects to it (header comment for the estimate).
+  void laserSample(const Scene& scene, const NlosPath& path, const BSDF& bsdf, Sampler& sampler,
+                   const Capture& c) const {
+    Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
+    if (!recorded(path.segments + 2)) return;
+    Ray emitted;
+    Color3f weight = c.laser.sampleRay(uPosition, uDirection, emitted);
+    SurfaceInteraction y;
+    if (weight.isBlack() || !scene.rayIntersect(emitted, y) || !y.bsdf()) return;
+    Vec3f toY = y.p - path.si.p;
+    float dist = length(toY);
+    if (!(dist > 0.0f)) return;
+    toY = toY / dist;
+    double opl = path.opl + double(path.eta) * dist + y.t;
+    if (opl - c.oplShift >= c.recorder.horizon()) return;
+    Color3f fx = bsdf.eval(path.si, path.si.toLocal(toY));
+    if (fx.isBlack()) return;
+    // At y light arrives from the laser (y.wi) and leaves toward x: the adjoint evaluation.
+    Color3f fy = y.bsdf()->eval(y, y.toLocal(-toY), TransportMode::Importance);
+    if (fy.isBlack() || scene.rayTest(path.si.spawnRayTo(y.p))) return;
+    deposit(c, opl, path.beta * fx * fy * weight / (dist * dist));
+  }
+
+  /// Choose the next direction, trace it and move the path to what it hits.
+  bool continuePath(const Scene& scene, NlosPath& path, const BSDF& bsdf, const HiddenGeometry* hidden,
+                    Sampler& sampler) const {
+    const SurfaceInteraction& si = path.si;
+    float uPick = sampler.next1D(), uLobe = sampler.next1D();
+    Point2f u = sampler.next2D();
+    const bool mixture = hidden && !(bsdf.flags() & BSDFFlags::Delta);
+    Vec3f wo;
+    Color3f weight;
+    float relativeEta = 1.0f;
+    if (mixture && (!hiddenRoulette_ || uPick < 0.5f)) {
+      if (!hidden->sampleDirection(si, u, wo)) return false;
+    } else {
+      BSDFSample bs;
+      weight = bsdf.sample(si, uLobe, u, bs);
+      if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
+      wo = si.toWorld(bs.wo);
+      relativeEta = bs.eta;
+    }
+    if (mixture) {
+      // The density of every strategy that could have chosen wo (one-sample mixture).
+      Vec3f local = si.toLocal(wo);
+      float pdf = hidden->pdf(scene, si, wo);
+      if (hiddenRoulette_) pdf = 0.5f * pdf + 0.5f * bsdf.pdf(si, local);
+      if (!(pdf > 0.0f)) return false;
+      weight = bsdf.eval(si, local) / pdf;
+      if (weight.isBlack()) return false;
+    }
+    SurfaceInteraction next;
+    if (!scene.rayIntersect(si.spawnRay(wo), next)) return false;
+    path.eta *= relativeEta;
+    path.beta *= weight;
+    path.opl += double(path.eta) * next.t;
+    path.si = next;
+    ++path.segments;
+    return true;
+  }
+
+  PathDepthSettings depth_;
+  int filterDepth_ = -1;
+  bool discardDirect_ = false;
+  bool laserSampling_ = false;
+  bool hiddenSampling_ = false;
+  bool hiddenRoulette_ = false;
+  bool hiddenIncludesWall_ = false;
+};
+
+}  // namespace femto
+
+FEMTO_EXPORT_PLUGIN(femto::TransientNlosPath, Integrator, "transient_nlos_path",
+                    "mitransient's non-line-of-sight path tracer: laser and hidden-geometry sampling, exact OPL")

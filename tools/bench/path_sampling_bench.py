@@ -1,0 +1,201 @@
+#!/usr/bin/python3
+"""transient_path's distance sampling, measured: prints the Markdown of
+docs/BENCHMARKS.md's "transient_path sampling" section.
+
+  tools/bench/path_sampling_bench.py [--peer-spp 16,64,256,1024] [--seeds 3] \
+      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md path-sampling
+
+(a) Equiangular next-event vertices vs free flights only (transient_path's
+    `equiangular`) on scenes/cornell-box-fog, single scattering (max_depth 2)
+    and the scene's max_depth 8.
+(b) Time windows on the same scene: the full window, its first and its last
+    10 %, with `time_gating` off and on.
+(c) femto's transient_path against ToF-Tungsten's path tracer on
+    ../shared/scenes/tof-tungsten-cbox-trans (skipped when absent), scored
+    against its 8192-spp reference.npy with the README's relMSE.
+
+Error in (a) and (b) is estimated without a reference: two renders with
+independent seeds differ by twice the variance (both estimators are
+unbiased; the tests check that), so MSE = mean (a - b)^2 / 2 and, in (a),
+relMSE = mean (a - b)^2 / (2 (m^2 + 0.01 mean(m)^2)), m = (a + b) / 2. A late
+window is sparse (most cells get no sample at all), where this relMSE,
+normalised by the renders' own values, rewards empty cells: (b) uses MSE.
+Medians over seed pairs; CPU = user + system seconds of the whole
+`femto render` process, median over its runs.
+"""
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+FEMTO = os.path.join(ROOT, "build", "bin", "femto")
+FOG = os.path.join(ROOT, "scenes", "cornell-box-fog", "scene.xml")
+PEER = os.path.join(ROOT, "..", "shared", "scenes", "tof-tungsten-cbox-trans")
+
+
+def render(scene, defines, seed, out_dir, threads):
+    """Render; returns (volume as float64, CPU seconds of the process)."""
+    out = os.path.join(out_dir, f"r{seed}_{abs(hash(tuple(sorted(defines.items())))) % 10**8}.exr")
+    cmd = [FEMTO, "render", scene, "-o", out, "--seed", str(seed), "-t", str(threads)]
+    for k, v in defines.items():
+        cmd += ["-D", f"{k}={v}"]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return np.load(out[:-4] + ".npy").astype(np.float64), cpu
+
+
+def rel_mse(x, ref):
+    """The peer README's relMSE: mean (x - ref)^2 / (ref^2 + 0.01 mean(ref)^2)."""
+    return float(np.mean((x - ref) ** 2 / (ref ** 2 + 0.01 * np.mean(ref) ** 2)))
+
+
+def pairwise_rel_mse(a, b):
+    m = 0.5 * (a + b)
+    return float(np.mean((a - b) ** 2 / (m ** 2 + 0.01 * np.mean(m) ** 2))) / 2.0
+
+
+def worst_share(x, ref, fraction=0.01):
+    """Share of the squared error held by the worst `fraction` of cells."""
+    e = np.sort(((x - ref) ** 2).ravel())[::-1]
+    return float(e[: max(1, int(len(e) * fraction))].sum() / e.sum()) if e.sum() > 0 else 0.0
+
+
+def measure_pairs(scene, defines, seeds, out_dir, threads, crop=None):
+    """Median pairwise relMSE, MSE, worst-1 % share and CPU over seed pairs."""
+    errors, mses, shares, cpus = [], [], [], []
+    for k in range(seeds):
+        a, ca = render(scene, defines, 2 * k + 1, out_dir, threads)
+        b, cb = render(scene, defines, 2 * k + 2, out_dir, threads)
+        if crop is not None:
+            a, b = a[:, :, crop[0]:crop[1]], b[:, :, crop[0]:crop[1]]
+        errors.append(pairwise_rel_mse(a, b))
+        mses.append(float(np.mean((a - b) ** 2)) / 2.0)
+        shares.append(worst_share(a, b))
+        cpus += [ca, cb]
+    return statistics.median(errors), statistics.median(mses), statistics.median(shares), statistics.median(cpus)
+
+
+def fog_defines(**extra):
+    d = {"resolution": 48, "spp": 128, "frames": "false"}
+    d.update(extra)
+    return d
+
+
+def table_equiangular(args, out_dir):
+    print("### (a) Equiangular next-event vertices vs free flights (fog Cornell box)\n")
+    print("48×48, 128 spp, 512 bins (OPL 3 to 13.24); relMSE and MSE (per cell) from independent seed pairs, "
+          f"medians over {args.seeds} pairs. Efficiency = 1 / (MSE × CPU), relative to free flights.\n")
+    print("| max_depth | distance sampling | CPU s | relMSE | MSE | MSE × CPU | efficiency | worst 1 % cells' error share |")
+    print("|---|---|---|---|---|---|---|---|")
+    for depth in (2, 8):
+        base = None
+        for eq in ("false", "true"):
+            rel, e, share, cpu = measure_pairs(FOG, fog_defines(max_depth=depth, equiangular=eq), args.seeds,
+                                               out_dir, args.threads)
+            base = base or e * cpu
+            name = "free flights" if eq == "false" else "free flights + equiangular (MIS)"
+            print(f"| {depth} | {name} | {cpu:.2f} | {rel:.3g} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} | "
+                  f"{share:.2f} |")
+    print()
+
+
+def table_windows(args, out_dir):
+    print("### (b) Time windows and time gating (fog Cornell box)\n")
+    print("48×48, 128 spp, bins of 0.02 OPL; the full window is OPL [3, 13.24) in 512 bins, the first 10 % "
+          "[3, 4.02) and the last 10 % [12.22, 13.24) in 51 bins. `late bins of full` scores the full render's "
+          "bins 461..511 (the late window's OPLs) and charges the full render's CPU. Efficiency = 1 / (MSE × CPU) "
+          "of the late window, relative to the full render's late bins. MSE per cell (volume values), pairwise.\n")
+    print("| window | time_gating | CPU s | CPU / full window's | MSE in the window | MSE × CPU | efficiency |")
+    print("|---|---|---|---|---|---|---|")
+    full_cpu = {}
+    late_base = None
+    rows = [("full", {}, None), ("late bins of full", {}, (461, 512)), ("first 10 %", {"bins": 51}, None),
+            ("last 10 %", {"bins": 51, "start": 12.22}, None)]
+    for name, window, crop in rows:
+        for gating in ("false", "true"):
+            _, e, _, cpu = measure_pairs(FOG, fog_defines(time_gating=gating, **window), args.seeds, out_dir,
+                                      args.threads, crop)
+            if name == "full":
+                full_cpu[gating] = cpu
+            if name == "late bins of full" and gating == "false":
+                late_base = e * cpu
+            ratio = cpu / full_cpu["false"]
+            eff = f"{late_base / (e * cpu):.2f}" if late_base and name in ("late bins of full", "last 10 %") else "-"
+            print(f"| {name} | {gating} | {cpu:.2f} | {ratio:.2f} | {e:.3g} | {e * cpu:.3g} | {eff} |")
+    print()
+
+
+def table_peer(args, out_dir):
+    reference = os.path.join(PEER, "reference.npy")
+    if not os.path.exists(reference):
+        print("### (c) ToF-Tungsten's scene: skipped (../shared/scenes/tof-tungsten-cbox-trans is not present)\n")
+        return
+    ref = np.load(reference).astype(np.float64)
+    peer = {16: (2.1, 91.3), 64: (7.6, 22.5), 256: (30.0, 5.58), 1024: (113.0, 1.26)}
+    print("### (c) femto transient_path vs ToF-Tungsten's path tracer (its transient Cornell box in fog)\n")
+    print("128×128×200 bins, against ToF-Tungsten's 8192-spp reference.npy with its README's relMSE; "
+          f"seed 1. ToF-Tungsten's figures are its README's (same machine type). Budgets: {args.peer_spp}.\n")
+    print("| spp | femto CPU s | femto relMSE | femto relMSE × CPU | worst 1 % cells' share | ToF-Tungsten relMSE × CPU | "
+          "ratio ToF-Tungsten / femto |")
+    print("|---|---|---|---|---|---|---|")
+    for spp in args.peer_spp:
+        x, cpu = render(os.path.join(PEER, "scene.xml"), {"spp": spp}, 1, out_dir, args.threads)
+        e = rel_mse(x, ref)
+        theirs = peer[spp][0] * peer[spp][1] if spp in peer else None
+        t = f"{theirs:.0f}" if theirs else "-"
+        r = f"{theirs / (e * cpu):.2f}" if theirs else "-"
+        print(f"| {spp} | {cpu:.1f} | {e:.3g} | {e * cpu:.3g} | {worst_share(x, ref):.2f} | {t} | {r} |")
+    print()
+
+
+def cpu_model():
+    out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+    return next((l.split(":", 1)[1].strip() for l in out.splitlines() if l.startswith("Model name")), "unknown CPU")
+
+
+def commit():
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout
+    dirty = subprocess.run(["git", "-C", ROOT, "diff", "--quiet", "HEAD", "--", "src", "tools", "scenes"]).returncode
+    return head.strip() + (" (with uncommitted changes)" if dirty else "")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--seeds", type=int, default=3, help="seed pairs for (a) and (b)")
+    parser.add_argument("--peer-spp", default="16,64,256,1024", help="budgets of (c)")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--only", default="abc", help="which tables")
+    args = parser.parse_args()
+    args.peer_spp = [int(s) for s in args.peer_spp.split(",")]
+    load_start = os.getloadavg()
+    with tempfile.TemporaryDirectory(prefix="path-sampling-") as out_dir:
+        print("## transient_path sampling: equiangular, time windows, the peer's scene\n")
+        print("Generated by `tools/bench/path_sampling_bench.py` — do not edit this section by hand; rerun the script.\n")
+        print(f"- machine: {cpu_model()}, {os.cpu_count()} logical CPUs; {args.threads} render threads")
+        print(f"- commit: {commit()}")
+        print(f"- command: `tools/bench/path_sampling_bench.py --seeds {args.seeds} --peer-spp "
+              f"{','.join(map(str, args.peer_spp))}`")
+        print("- CPU = user + system seconds of the whole `femto render` process (loading, rendering, writing); "
+              "the machine is shared, so wall time is not quoted\n")
+        if "a" in args.only:
+            table_equiangular(args, out_dir)
+        if "b" in args.only:
+            table_windows(args, out_dir)
+        if "c" in args.only:
+            table_peer(args, out_dir)
+        load_end = os.getloadavg()
+        print("Load average (1, 5, 15 min) at the start: " + " ".join(f"{x:.2f}" for x in load_start) +
+              "; at the end: " + " ".join(f"{x:.2f}" for x in load_end) + ".")
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,205 @@
+#!/usr/bin/python3
+"""Reconstruct a hidden scene from a femto NLOS capture (transient_nlos_path
+with an nlos_capture_meter; docs/nlos.md).
+
+Two methods, both back-projections of the capture H(w, t) (w a watched wall
+point, t an OPL) onto voxels v of a box:
+  fbp     filtered back-projection (Velten et al., Nature Comms. 2012):
+          V(v) = sum_w H(w, t(v, w)), then the negative 3D Laplacian, clamped at 0;
+  phasor  phasor fields (Liu et al., Nature 2019): every H(w, .) is first
+          convolved with the virtual wave P(t) = exp(2 pi i t / lambda)
+          exp(-t^2 / (2 sigma^2)) (NumPy's FFT), then back-projected; the
+          reconstruction is |V|.
+t(v, w) is 2 |v - w| for a confocal capture and |w - v| + |v - y| for one lit
+point y (exhaustive captures are one such capture per lit point). Captures
+rendered with the first and last legs accounted have them removed first
+(--sensor-origin, --laser-origin).
+
+The wall is the rectangle of the capture: centre --wall-center, half sizes
+--wall-half along x and y, normal +z (femto's rectangle scaled and moved);
+pixel (i, j) of the .npy (row j, column i) watches the point at uv
+((i + 0.5) / W, (j + 0.5) / H), as the capture meter places them.
+
+Writes PREFIX.npy (the volume, nz x ny x nx) and PREFIX.png (its maximum
+over z, row 0 at the box's largest y, as seen from the wall).
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+
+def parse_vector(text, n):
+    values = [float(v) for v in text.split(",")]
+    if len(values) != n:
+        raise argparse.ArgumentTypeError(f"expected {n} comma-separated numbers, got {text!r}")
+    return np.array(values)
+
+
+def load_capture(path):
+    """The capture as H[j, i, t] (channels summed) and its time axis (start, width)."""
+    volume = np.load(path)
+    if volume.ndim != 4:
+        sys.exit(f"{path}: expected a femto transient volume (height, width, bins, channels), got shape {volume.shape}")
+    sidecar = os.path.splitext(path)[0] + ".json"
+    if not os.path.exists(sidecar):
+        sys.exit(f"{path}: its time axis is in {sidecar}, which is missing")
+    with open(sidecar) as f:
+        info = json.load(f)
+    return volume.sum(axis=3).astype(np.float64), float(info["start_opl"]), float(info["bin_width_opl"])
+
+
+def wall_points(height, width, center, half):
+    """World positions of the watched points, [j, i, xyz]."""
+    u = (np.arange(width) + 0.5) / width
+    v = (np.arange(height) + 0.5) / height
+    x = center[0] + half[0] * (2.0 * u - 1.0)
+    y = center[1] + half[1] * (2.0 * v - 1.0)
+    points = np.zeros((height, width, 3))
+    points[..., 0] = x[None, :]
+    points[..., 1] = y[:, None]
+    points[..., 2] = center[2]
+    return points
+
+
+def voxel_centers(box, voxels):
+    lo, hi = box[:3], box[3:]
+    axes = [lo[k] + (np.arange(voxels[k]) + 0.5) * (hi[k] - lo[k]) / voxels[k] for k in range(3)]
+    z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
+    return np.stack([x, y, z], axis=-1)  # [z, y, x, xyz]
+
+
+def remove_legs(capture, start, width, points, sensor, laser, lit):
+    """Shift every wall point's signal earlier by its first and last legs."""
+    bins = capture.shape[2]
+    out = np.zeros_like(capture)
+    for j in range(capture.shape[0]):
+        for i in range(capture.shape[1]):
+            w = points[j, i]
+            target = w if lit is None else lit
+            shift = np.linalg.norm(sensor - w) + np.linalg.norm(laser - target)
+            k = int(round(shift / width))
+            if k < bins:
+                out[j, i, : bins - k] = capture[j, i, k:]
+    return out
+
+
+def phasor_filter(capture, width, wavelength, cycles):
+    """Convolve every time signal with the virtual phasor wave (Liu et al. 2019, eq. 5)."""
+    bins = capture.shape[2]
+    sigma = cycles * wavelength / 6.0  # the Gaussian envelope holds `cycles` periods within +-3 sigma
+    half = int(np.ceil(3.0 * sigma / width))
+    t = np.arange(-half, half + 1) * width
+    kernel = np.exp(2j * np.pi * t / wavelength) * np.exp(-0.5 * (t / sigma) ** 2)
+    n = bins + kernel.size - 1
+    spectrum = np.fft.fft(capture, n=n, axis=2) * np.fft.fft(kernel, n=n)[None, None, :]
+    return np.fft.ifft(spectrum, axis=2)[:, :, half : half + bins]
+
+
+def back_project(capture, start, width, points, voxels_xyz, lit):
+    """V(v) = sum over wall points of the signal at the voxel's arrival time (linear in t)."""
+    bins = capture.shape[2]
+    volume = np.zeros(voxels_xyz.shape[:3], dtype=capture.dtype)
+    to_lit = None if lit is None else np.linalg.norm(voxels_xyz - lit, axis=-1)
+    for j in range(capture.shape[0]):
+        for i in range(capture.shape[1]):
+            d = np.linalg.norm(voxels_xyz - points[j, i], axis=-1)
+            t = 2.0 * d if to_lit is None else d + to_lit
+            f = (t - start) / width - 0.5  # bin centres at start + (k + 0.5) width
+            k = np.floor(f).astype(np.int64)
+            a = f - k
+            inside = (k >= 0) & (k + 1 < bins)
+            k = np.clip(k, 0, bins - 2)
+            signal = capture[j, i]
+            volume += np.where(inside, (1.0 - a) * signal[k] + a * signal[k + 1], 0.0)
+    return volume
+
+
+def smooth_in_time(capture, width, sigma):
+    """Gaussian blur of every time signal (standard deviation `sigma`, OPL units), by FFT."""
+    bins = capture.shape[2]
+    half = int(np.ceil(3.0 * sigma / width))
+    t = np.arange(-half, half + 1) * width
+    kernel = np.exp(-0.5 * (t / sigma) ** 2)
+    kernel /= kernel.sum()
+    n = bins + kernel.size - 1
+    spectrum = np.fft.rfft(capture, n=n, axis=2) * np.fft.rfft(kernel, n=n)[None, None, :]
+    return np.fft.irfft(spectrum, n=n, axis=2)[:, :, half : half + bins]
+
+
+def negative_laplacian(volume):
+    """-(discrete 3D Laplacian), clamped at 0: the FBP filter (Velten et al. 2012)."""
+    padded = np.pad(volume, 1, mode="edge")
+    lap = -6.0 * volume
+    for axis in range(3):
+        lap += np.take(padded, range(2, padded.shape[axis]), axis=axis)[tuple(
+            slice(1, -1) if a != axis else slice(None) for a in range(3))]
+        lap += np.take(padded, range(0, padded.shape[axis] - 2), axis=axis)[tuple(
+            slice(1, -1) if a != axis else slice(None) for a in range(3))]
+    return np.maximum(-lap, 0.0)
+
+
+def reconstruct(capture, start, width, points, box, voxels, lit, method, wavelength=None, cycles=4.0):
+    """The reconstructed volume [z, y, x] (non-negative)."""
+    centers = voxel_centers(box, voxels)
+    if method == "fbp":
+        # Back-projection samples each signal once per voxel: blur it first to
+        # the voxels' reach in OPL (a voxel edge moves t by up to twice its
+        # length), or the Laplacian amplifies the aliased bins.
+        voxel = float(np.max((box[3:] - box[:3]) / voxels))
+        if voxel > width:
+            capture = smooth_in_time(capture, width, voxel)
+        return negative_laplacian(back_project(capture, start, width, points, centers, lit))
+    if wavelength is None:
+        spacing = max(abs(points[0, 1, 0] - points[0, 0, 0]) if points.shape[1] > 1 else 0.0,
+                      abs(points[1, 0, 1] - points[0, 0, 1]) if points.shape[0] > 1 else 0.0)
+        wavelength = 2.0 * max(spacing, 2.0 * width)  # Nyquist in space and in time
+    filtered = phasor_filter(capture, width, wavelength, cycles)
+    return np.abs(back_project(filtered, start, width, points, centers, lit))
+
+
+def max_projection_png(volume, path):
+    """Maximum over z as an 8-bit PNG, normalised to its peak, +y up."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    image = volume.max(axis=0)
+    peak = image.max()
+    image = image / peak if peak > 0 else image
+    plt.imsave(path, image[::-1, :], cmap="inferno", vmin=0.0, vmax=1.0)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("capture", help="the capture's .npy (its .json sidecar beside it)")
+    p.add_argument("--wall-center", type=lambda s: parse_vector(s, 3), default=np.zeros(3))
+    p.add_argument("--wall-half", type=lambda s: parse_vector(s, 2), default=np.ones(2))
+    p.add_argument("--lit-point", type=lambda s: parse_vector(s, 3), default=None,
+                   help="the wall point the laser lit (exhaustive capture); confocal when absent")
+    p.add_argument("--sensor-origin", type=lambda s: parse_vector(s, 3), default=None,
+                   help="with --laser-origin: the capture kept its first and last legs; remove them")
+    p.add_argument("--laser-origin", type=lambda s: parse_vector(s, 3), default=None)
+    p.add_argument("--box", type=lambda s: parse_vector(s, 6), required=True, help="x0,y0,z0,x1,y1,z1")
+    p.add_argument("--voxels", type=lambda s: parse_vector(s, 3).astype(int), default=np.array([32, 32, 32]))
+    p.add_argument("--method", choices=["fbp", "phasor"], default="fbp")
+    p.add_argument("--wavelength", type=float, default=None, help="phasor: the virtual wavelength (OPL units)")
+    p.add_argument("-o", "--output", required=True, help="output prefix: PREFIX.npy and PREFIX.png")
+    args = p.parse_args(argv)
+    capture, start, width = load_capture(args.capture)
+    points = wall_points(capture.shape[0], capture.shape[1], args.wall_center, args.wall_half)
+    if (args.sensor_origin is None) != (args.laser_origin is None):
+        p.error("give both --sensor-origin and --laser-origin, or neither")
+    if args.sensor_origin is not None:
+        capture = remove_legs(capture, start, width, points, args.sensor_origin, args.laser_origin, args.lit_point)
+    volume = reconstruct(capture, start, width, points, args.box, args.voxels, args.lit_point, args.method,
+                         args.wavelength)
+    np.save(args.output + ".npy", volume.astype(np.float32))
+    max_projection_png(volume, args.output + ".png")
+
+
+if __name__ == "__main__":
+    main()
