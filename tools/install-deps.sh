@@ -13,6 +13,7 @@ packages=(
   # The femto Python module (src/python): pybind11 headers and the Python
   # headers to build it for /usr/bin/python3; pytest runs its tests under ctest.
   pybind11-dev python3-dev python3-pytest
+  libopenmpi-dev openmpi-bin  # optional: mpirun -n N femto render (tools/femto/mpi/) and its tests
 )
 missing=()
 for p in "${packages[@]}"; do

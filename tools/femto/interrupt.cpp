@@ -2,9 +2,9 @@
 
 #include <pthread.h>
 
+#include <unistd.h>
 #include <csignal>
 #include <cstring>
-#include <unistd.h>
 
 #include <femto/base/temp_files.h>
 
@@ -14,8 +14,9 @@ namespace {
 // A signal handler may only touch lock-free atomics.
 static_assert(std::atomic<bool>::is_always_lock_free);
 std::atomic<bool> gCancel{false};
-constexpr int HandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
-struct sigaction gPrevious[3];
+constexpr int HandledSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};
+constexpr int SignalCount = int(sizeof(HandledSignals) / sizeof(HandledSignals[0]));
+struct sigaction gPrevious[SignalCount];
 
 void writeStderr(const char* message) {
   // write(2) is async-signal-safe; iostreams and printf are not.
@@ -41,12 +42,14 @@ void writeStderr(const char* message) {
 }
 
 extern "C" void onSignal(int signal) {
-  if (signal == SIGINT && !gCancel.exchange(true)) {
+  // SIGUSR1 stands for the first Ctrl-C under mpirun, which forwards it (not SIGINT) to every rank.
+  if ((signal == SIGINT || signal == SIGUSR1) && !gCancel.exchange(true)) {
     writeStderr("\ninterrupted: finishing and writing the partial image (Ctrl-C again to quit at once)\n");
     return;
   }
-  writeStderr(signal == SIGINT ? "\ninterrupted again: quitting at once; unfinished outputs are removed\n"
-                               : "\nterminated: quitting at once; unfinished outputs are removed\n");
+  writeStderr(signal == SIGINT || signal == SIGUSR1
+                  ? "\ninterrupted again: quitting at once; unfinished outputs are removed\n"
+                  : "\nterminated: quitting at once; unfinished outputs are removed\n");
   endBySignal(signal);
 }
 
@@ -57,11 +60,11 @@ InterruptGuard::InterruptGuard() {
   struct sigaction action {};
   action.sa_handler = onSignal;
   sigemptyset(&action.sa_mask);
-  for (int k = 0; k < 3; ++k) sigaction(HandledSignals[k], &action, &gPrevious[k]);
+  for (int k = 0; k < SignalCount; ++k) sigaction(HandledSignals[k], &action, &gPrevious[k]);
 }
 
 InterruptGuard::~InterruptGuard() {
-  for (int k = 0; k < 3; ++k) sigaction(HandledSignals[k], &gPrevious[k], nullptr);
+  for (int k = 0; k < SignalCount; ++k) sigaction(HandledSignals[k], &gPrevious[k], nullptr);
 }
 
 const std::atomic<bool>& InterruptGuard::cancelFlag() const { return gCancel; }

@@ -5,6 +5,8 @@
 // temporary files of outputs not yet complete are removed (temp_files.h) and
 // the process dies by that signal, so a parent sees it was killed (the shell
 // reports 128 + the signal number; Python's returncode is minus it).
+// SIGUSR1 counts as a Ctrl-C: Open MPI's mpirun forwards it to every rank
+// (`kill -USR1 <mpirun>`), while a Ctrl-C on mpirun sends the ranks SIGTERM.
 #include <atomic>
 
 namespace femto::cli {

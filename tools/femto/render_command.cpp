@@ -25,6 +25,7 @@
 #include "command_options.h"
 #include "commands.h"
 #include "interrupt.h"
+#include "mpi/render_processes.h"
 
 namespace fs = std::filesystem;
 
@@ -94,7 +95,7 @@ void printSummary(const fs::path& output, const RenderStats& stats, double secon
   if (interrupted) std::cout << "interrupted by Ctrl-C\n";
 }
 
-int render(const RenderSettings& settings) {
+int renderHere(const RenderSettings& settings, const RenderProcesses& processes) {
   settings.applyPluginDirs();
   // Parse every argument before the (possibly slow) scene load.
   LoadOptions load = loadOptions(settings);
@@ -102,8 +103,9 @@ int render(const RenderSettings& settings) {
   options.threads = settings.threads;
   options.seed = settings.seed;
   options.output = outputPath(settings);
-  options.progress = !settings.noProgress;
-  checkOutputWritable(options.output);
+  // Under mpirun only rank 0 writes and draws; the others render tiles for it.
+  options.progress = !settings.noProgress && processes.writes();
+  if (processes.writes()) checkOutputWritable(options.output);
 
   std::optional<tbb::global_control> threadLimit;
   if (settings.threads > 0)
@@ -111,14 +113,28 @@ int render(const RenderSettings& settings) {
 
   std::shared_ptr<Scene> scene = loadScene(settings.scene, load);
   scene->sensor().film().checkOutputPath(options.output);
+  const fs::path output = options.output;
+  if (!processes.writes()) options.output.clear();
   InterruptGuard interrupt;
   options.cancel = &interrupt.cancelFlag();
   const auto start = std::chrono::steady_clock::now();
   RenderStats stats = scene->integrator().render(*scene, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  printSummary(options.output, stats, seconds, interrupt.interrupted());
+  if (!processes.writes()) return 0;
+  printSummary(output, stats, seconds, interrupt.interrupted());
   // 128 + SIGINT tells scripts the image is partial.
   return interrupt.interrupted() ? 130 : 0;
+}
+
+int render(const RenderSettings& settings) {
+  RenderProcesses processes;
+  if (processes.count() == 1) return renderHere(settings, processes);
+  // One rank failing leaves the others waiting for it: end them all.
+  try {
+    return renderHere(settings, processes);
+  } catch (const std::exception& e) {
+    processes.abortJob(e.what());
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <femto/base/error.h>
 #include <femto/render/emitter.h>
 #include <femto/render/scene.h>
 
@@ -97,6 +98,24 @@ bool TransientTile::addSample(const Point2i& pixel, const Point2f& pos, Sampler&
                    steps_.empty() ? nullptr : &steps_[i * size_t(bins_) * 3]);
   weight_[i] += 1.0f;
   return true;
+}
+
+void TransientTile::pack(std::vector<float>& out) const {
+  out.clear();
+  for (const std::vector<float>* part : {&volume_, &steady_, &before_, &after_, &weight_, &steps_})
+    out.insert(out.end(), part->begin(), part->end());
+}
+
+void TransientTile::unpack(const float* data, size_t count) {
+  const size_t fixed = volume_.size() + steady_.size() + before_.size() + after_.size() + weight_.size();
+  // The steps travel only when the sender's samples made them (a continuous pulse).
+  if (count != fixed && count != fixed + volume_.size())
+    throw Error(str("a transient tile of ", fixed, " floats was sent ", count, " (not the same tile)"));
+  steps_.assign(count == fixed ? 0 : volume_.size(), 0.0f);
+  for (std::vector<float>* part : {&volume_, &steady_, &before_, &after_, &weight_, &steps_}) {
+    std::copy(data, data + part->size(), part->begin());
+    data += part->size();
+  }
 }
 
 void TransientTile::normalize() {

@@ -76,6 +76,10 @@ class TransientTile final : public TileAccumulator {
  public:
   TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context);
   bool addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) override;
+  /// The raw sums (volume, steady, before, after, weights, then the steps
+  /// when a continuous pulse made them), not yet normalized.
+  void pack(std::vector<float>& out) const override;
+  void unpack(const float* data, size_t count) override;
 
   /// Memory per pixel at most: the bins and, for continuous pulses, their
   /// step derivative (bins x 3 floats each), plus the RGB sums and weight.

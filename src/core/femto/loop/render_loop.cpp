@@ -15,31 +15,14 @@
 #include <femto/core/resources.h>
 #include <femto/core/progress.h>
 #include <femto/render/scene.h>
+#include <femto/loop/tile_distribution.h>
 
 namespace femto {
 namespace {
 
-struct Tile {
-  Point2i offset, size;
-  std::unique_ptr<TileAccumulator> accumulator;
-  uint64_t samples = 0, invalid = 0;
-};
-
-std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size, int side) {
-  std::vector<Tile> tiles;
-  for (int y = 0; y < size.y; y += side)
-    for (int x = 0; x < size.x; x += side) {
-      Tile t;
-      t.offset = Point2i(offset.x + x, offset.y + y);
-      t.size = Point2i(std::min(side, size.x - x), std::min(side, size.y - y));
-      tiles.push_back(std::move(t));
-    }
-  return tiles;
-}
-
 /// Render one tile into its own accumulator. Each pixel restarts the sampler
 /// from (seed, pixel index), so the values do not depend on which thread runs it.
-void renderTile(Tile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const TileFactory& makeTile) {
+void renderTile(RenderTile& tile, const Sampler& prototype, int filmWidth, uint64_t seed, const TileFactory& makeTile) {
   tile.accumulator = makeTile(tile.offset, tile.size);
   std::unique_ptr<Sampler> sampler = prototype.clone();
   const uint32_t spp = prototype.sampleCount();
@@ -67,6 +50,8 @@ class ImageBlockTile final : public TileAccumulator {
                  const SplatFunction& splatFn)
       : block(offset, size, filter, channels), splatFn_(splatFn) {}
   bool addSample(const Point2i&, const Point2f& pos, Sampler& sampler) override { return splatFn_(pos, sampler, block); }
+  void pack(std::vector<float>& out) const override { block.pack(out); }
+  void unpack(const float* data, size_t count) override { block.unpack(data, count); }
   ImageBlock block;
 
  private:
@@ -90,68 +75,116 @@ int tileSideWithin(double bytesPerPixel, size_t tilesInFlight) {
   return std::clamp(int(std::sqrt(pixelsPerTile)), 1, RenderTileSize);
 }
 
-RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress) {
-  const Film& film = scene.sensor().film();
-  const Sampler& prototype = scene.sensor().sampler();
-  std::optional<tbb::task_arena> arena;
-  if (options.threads > 0) arena.emplace(options.threads);
-  const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
-  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize(), tileSideWithin(tileBytesPerPixel, tokens));
-  const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  std::optional<ProgressReporter> ownProgress;
-  ProgressReporter& progress =
-      jobProgress ? *jobProgress : ownProgress.emplace("Rendering", pixelsTotal, options.progress, options.onProgress);
-  const auto start = std::chrono::steady_clock::now();
-  bool cancelled = false;
-  RenderStats stats;
+void TileAccumulator::pack(std::vector<float>&) const {
+  throw Error("this integrator's tiles cannot be sent to another process (a distributed render needs tiles that pack)");
+}
 
+void TileAccumulator::unpack(const float*, size_t) {
+  throw Error("this integrator's tiles cannot be received from another process");
+}
+
+namespace {
+
+TileDistribution* gDistribution = nullptr;
+
+}  // namespace
+
+void setTileDistribution(TileDistribution* distribution) { gDistribution = distribution; }
+TileDistribution* tileDistribution() { return gDistribution; }
+
+std::vector<RenderTile> cropWindowTiles(const Scene& scene, int side) {
+  const Film& film = scene.sensor().film();
+  const Point2i offset = film.cropOffset(), size = film.cropSize();
+  std::vector<RenderTile> tiles;
+  for (int y = 0; y < size.y; y += side)
+    for (int x = 0; x < size.x; x += side) {
+      RenderTile t;
+      t.index = tiles.size();
+      t.offset = Point2i(offset.x + x, offset.y + y);
+      t.size = Point2i(std::min(side, size.x - x), std::min(side, size.y - y));
+      tiles.push_back(std::move(t));
+    }
+  return tiles;
+}
+
+void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& claim,
+                        const std::function<void(RenderTile&)>& deliver) {
+  const Film& film = job.scene.sensor().film();
+  const Sampler& prototype = job.scene.sensor().sampler();
+  const uint64_t seed = prototype.cameraSeed(job.options.seed);
+  std::optional<tbb::task_arena> arena;
+  if (job.options.threads > 0) arena.emplace(job.options.threads);
   auto work = [&] {
     // A pipeline: tiles enter in order, render in parallel, and leave in
     // order. The token limit bounds how many tiles exist at once (rendering
     // or waiting for an earlier tile), which bounds memory for large tiles
     // (transient films) and keeps the consumer's sums in a fixed order.
-    size_t next = 0;
     tbb::parallel_pipeline(
-        tokens,
-        tbb::make_filter<void, Tile*>(tbb::filter_mode::serial_in_order,
-                                      [&](tbb::flow_control& fc) -> Tile* {
-                                        if (next == tiles.size()) {
-                                          fc.stop();
-                                          return nullptr;
-                                        }
-                                        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-                                          cancelled = true;
-                                          fc.stop();
-                                          return nullptr;
-                                        }
-                                        return &tiles[next++];
-                                      }) &
-            tbb::make_filter<Tile*, Tile*>(tbb::filter_mode::parallel,
-                                           [&](Tile* tile) {
-                                             renderTile(*tile, prototype, film.size().x, prototype.cameraSeed(options.seed), makeTile);
-                                             progress.update(uint64_t(tile->size.x) * uint64_t(tile->size.y));
-                                             return tile;
-                                           }) &
-            tbb::make_filter<Tile*, void>(tbb::filter_mode::serial_in_order, [&](Tile* tile) {
-              consume(*tile->accumulator);
-              tile->accumulator.reset();
-              stats.samples += tile->samples;
-              stats.invalidSamples += tile->invalid;
-            }));
+        tilesInFlight(),
+        tbb::make_filter<void, RenderTile*>(tbb::filter_mode::serial_in_order,
+                                            [&](tbb::flow_control& fc) -> RenderTile* {
+                                              RenderTile* tile = claim();
+                                              if (!tile) fc.stop();
+                                              return tile;
+                                            }) &
+            tbb::make_filter<RenderTile*, RenderTile*>(tbb::filter_mode::parallel,
+                                                       [&](RenderTile* tile) {
+                                                         renderTile(*tile, prototype, film.size().x, seed, job.makeTile);
+                                                         return tile;
+                                                       }) &
+            tbb::make_filter<RenderTile*, void>(tbb::filter_mode::serial_in_order,
+                                                [&](RenderTile* tile) { deliver(*tile); }));
   };
   if (arena)
     arena->execute(work);
   else
     work();
-  if (ownProgress) ownProgress->finish();
+}
 
+RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
+                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress) {
+  std::optional<tbb::task_arena> arena;
+  if (options.threads > 0) arena.emplace(options.threads);
+  const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
+  const int side = tileSideWithin(tileBytesPerPixel, tokens);
+  TileJob job{scene, options, makeTile, consume, jobProgress, side, cropWindowTiles(scene, side)};
+  if (TileDistribution* distribution = tileDistribution()) return distribution->run(job);
+  const Point2i crop = scene.sensor().film().cropSize();
+  std::optional<ProgressReporter> ownProgress;
+  ProgressReporter& progress =
+      jobProgress ? *jobProgress : ownProgress.emplace("Rendering", uint64_t(crop.x) * uint64_t(crop.y), options.progress,
+                                                   options.onProgress);
+  const auto start = std::chrono::steady_clock::now();
+  bool cancelled = false;
+  size_t next = 0;
+  RenderStats stats;
+  auto claim = [&]() -> RenderTile* {
+    if (next == job.tiles.size()) return nullptr;
+    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+      cancelled = true;
+      return nullptr;
+    }
+    return &job.tiles[next++];
+  };
+  auto deliver = [&](RenderTile& tile) {
+    progress.update(uint64_t(tile.size.x) * uint64_t(tile.size.y));
+    consume(*tile.accumulator);
+    tile.accumulator.reset();
+    stats.samples += tile.samples;
+    stats.invalidSamples += tile.invalid;
+  };
+  renderClaimedTiles(job, claim, deliver);
+  if (ownProgress) ownProgress->finish();
   stats.completed = !cancelled;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  reportTileStream(stats);
+  return stats;
+}
+
+void reportTileStream(const RenderStats& stats) {
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
-  if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
-  return stats;
+  if (!stats.completed) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include <femto/math/ray.h>
 #include <femto/render/image_block.h>
@@ -28,6 +29,12 @@ class TileAccumulator {
   /// drawn inside `pixel`. Returns false when the sample was invalid (NaN,
   /// infinite, negative) and was dropped.
   virtual bool addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) = 0;
+  /// The sums accumulated so far as floats, to send the tile to another
+  /// process (tile_distribution.h); unpack restores them, exactly, into an
+  /// accumulator the same factory made for the same tile. By default a tile
+  /// cannot travel (Error).
+  virtual void pack(std::vector<float>& out) const;
+  virtual void unpack(const float* data, size_t count);
 };
 
 /// Creates the accumulator of the tile at `offset` (film pixels) of `size`.

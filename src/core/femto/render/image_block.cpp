@@ -34,6 +34,12 @@ ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const Reconst
 
 void ImageBlock::clear() { std::fill(data_.begin(), data_.end(), 0.0f); }
 
+void ImageBlock::unpack(const float* data, size_t count) {
+  if (count != data_.size())
+    throw Error(str("an image block of ", data_.size(), " floats was sent ", count, " (not the same tile)"));
+  std::copy(data, data + count, data_.begin());
+}
+
 bool ImageBlock::put(const Point2f& pos, const Color3f& value) {
   if (channels_ != 3) throw Error(str("an RGB sample was put into an image block of ", channels_, " channels"));
   if (!value.isValid()) return false;

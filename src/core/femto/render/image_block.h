@@ -31,6 +31,10 @@ class ImageBlock {
   /// Add another block's sums into this one where they overlap.
   void merge(const ImageBlock& other);
   void clear();
+  /// The stored sums as floats (to send the block to another process), and
+  /// back into a block of the same offset, size, filter and channels.
+  void pack(std::vector<float>& out) const { out = data_; }
+  void unpack(const float* data, size_t count);
 
   const Point2i& offset() const { return offset_; }
   const Point2i& size() const { return size_; }

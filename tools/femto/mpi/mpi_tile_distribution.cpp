@@ -1,0 +1,217 @@
+#include "mpi_tile_distribution.h"
+
+#include <chrono>
+#include <cstring>
+#include <optional>
+#include <vector>
+
+#include <femto/core/log.h>
+#include <femto/core/progress.h>
+#include <femto/render/scene.h>
+
+#include "local_tiles.h"
+#include "mpi_wait.h"
+
+namespace femto::cli {
+namespace {
+
+enum Tag : int { Request = 1, Assign = 2, TileData = 3 };
+
+struct TileHeader {
+  uint64_t index, samples, invalid;
+};
+constexpr size_t HeaderFloats = sizeof(TileHeader) / sizeof(float);
+static_assert(sizeof(TileHeader) % sizeof(float) == 0);
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw Error(str("MPI ", what, " failed (error ", code, ")"));
+}
+
+}  // namespace
+
+MpiTileDistribution::MpiTileDistribution(MPI_Comm comm) : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+}
+
+RenderStats MpiTileDistribution::run(TileJob& job) {
+  // Every rank must cut the same tiles: the side shrinks with a rank's thread
+  // count when tiles are huge (tileSideWithin), so take the smallest, which
+  // fits every rank's memory bound.
+  int side = job.tileSide;
+  check(MPI_Allreduce(MPI_IN_PLACE, &side, 1, MPI_INT, MPI_MIN, comm_), "reduce");
+  if (side != job.tileSide) job.tiles = cropWindowTiles(job.scene, side), job.tileSide = side;
+  if (rank_ == 0) return shareStats(coordinate(job));
+  work(job);
+  return shareStats(RenderStats());
+}
+
+RenderStats MpiTileDistribution::shareStats(const RenderStats& stats) {
+  // Rank 0's statistics are the job's; the others learn from them whether
+  // the stream completed (after a cancel every rank stops together).
+  uint64_t counts[3] = {stats.completed ? 1u : 0u, stats.samples, stats.invalidSamples};
+  double seconds = stats.seconds;
+  // Non-blocking and waited for sleeping: the other ranks wait here while
+  // rank 0 folds its last tiles.
+  MPI_Request requests[2];
+  check(MPI_Ibcast(counts, 3, MPI_UINT64_T, 0, comm_, &requests[0]), "broadcast");
+  check(MPI_Ibcast(&seconds, 1, MPI_DOUBLE, 0, comm_, &requests[1]), "broadcast");
+  for (MPI_Request& request : requests) waitSleeping(request);
+  RenderStats shared;
+  shared.completed = counts[0] != 0;
+  shared.samples = counts[1], shared.invalidSamples = counts[2];
+  shared.seconds = seconds;
+  return shared;
+}
+
+RenderStats MpiTileDistribution::coordinate(TileJob& job) {
+  // The job's bar when the stream is part of a longer job (passes, frames), else one of its own.
+  const Point2i crop = job.scene.sensor().film().cropSize();
+  std::optional<ProgressReporter> ownProgress;
+  ProgressReporter& progress =
+      job.progress ? *job.progress
+                   : ownProgress.emplace("Rendering", uint64_t(crop.x) * uint64_t(crop.y), job.options.progress);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<RenderTile>& tiles = job.tiles;
+  size_t next = 0, consumed = 0;
+  bool cancelled = false;
+  int workersOpen = size_ - 1;
+  RenderStats stats;
+  // Tile indices in tile order, to whoever asks: after a cancel none, so the
+  // tiles handed out, and hence consumed, are a prefix of the tile order.
+  auto handOut = [&](uint64_t count) {
+    std::vector<uint64_t> ids;
+    if (!cancelled && job.options.cancel && job.options.cancel->load(std::memory_order_relaxed)) cancelled = true;
+    while (!cancelled && next < tiles.size() && ids.size() < count) ids.push_back(next++);
+    return ids;
+  };
+  // Set by the main thread only when a tile is finished (a tile rendering
+  // here already has its accumulator, so that cannot tell).
+  std::vector<bool> ready(tiles.size(), false);
+  auto arrived = [&](RenderTile& tile) {
+    ready[tile.index] = true;
+    progress.update(uint64_t(tile.size.x) * uint64_t(tile.size.y));
+  };
+
+  std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
+  uint64_t bytesReceived = 0, tilesReceived = 0;
+  LocalTiles local(job);
+  bool localOpen = true;
+  auto feedLocal = [&] {
+    while (localOpen && local.pending() < local.wanted()) {
+      std::vector<uint64_t> ids = handOut(1);
+      if (ids.empty()) local.close(), localOpen = false;
+      for (uint64_t id : ids) local.assign(&tiles[id]), ++perRank[0];
+    }
+  };
+  // Receives `rank`'s request (sleeping while it has not come) and answers it.
+  auto answer = [&](int rank) {
+    uint64_t count = 0;
+    MPI_Request request;
+    check(MPI_Irecv(&count, 1, MPI_UINT64_T, rank, Request, comm_, &request), "receive");
+    waitSleeping(request);
+    std::vector<uint64_t> ids = handOut(count);
+    if (ids.empty()) --workersOpen;
+    perRank[size_t(rank)] += ids.size();
+    check(MPI_Send(ids.data(), int(ids.size()), MPI_UINT64_T, rank, Assign, comm_), "send");
+  };
+  // The first round in rank order, waiting for every rank's first request:
+  // every rank starts with work (whoever loaded the scene first), and which
+  // rank renders the first tiles does not depend on start-up timing.
+  feedLocal();
+  for (int rank = 1; rank < size_; ++rank) answer(rank);
+  std::vector<float> buffer;
+  for (;;) {
+    bool busy = false;
+    feedLocal();
+    int flag = 0;
+    MPI_Status status;
+    check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &status), "probe");
+    if (flag) {
+      busy = true;
+      if (status.MPI_TAG == Request) {
+        answer(status.MPI_SOURCE);
+      } else if (status.MPI_TAG == TileData) {
+        int floats = 0;
+        MPI_Get_count(&status, MPI_FLOAT, &floats);
+        buffer.resize(size_t(floats));
+        check(MPI_Recv(buffer.data(), floats, MPI_FLOAT, status.MPI_SOURCE, TileData, comm_, MPI_STATUS_IGNORE),
+              "receive");
+        TileHeader header;
+        std::memcpy(&header, buffer.data(), sizeof(header));
+        if (header.index >= next || ready[header.index])
+          throw Error(str("rank ", status.MPI_SOURCE, " sent tile ", header.index, ", which it was not given"));
+        RenderTile& tile = tiles[header.index];
+        tile.accumulator = job.makeTile(tile.offset, tile.size);
+        tile.accumulator->unpack(buffer.data() + HeaderFloats, buffer.size() - HeaderFloats);
+        tile.samples = header.samples, tile.invalid = header.invalid;
+        bytesReceived += uint64_t(floats) * sizeof(float), ++tilesReceived;
+        arrived(tile);
+      } else {
+        throw Error(str("rank ", status.MPI_SOURCE, " sent an unexpected message (tag ", status.MPI_TAG, ")"));
+      }
+    }
+    for (RenderTile* tile : local.takeFinished()) arrived(*tile), busy = true;
+    // Fold in tile order, as one process does: the sums are then the same bits.
+    while (consumed < next && ready[consumed]) {
+      RenderTile& tile = tiles[consumed++];
+      job.consume(*tile.accumulator);
+      tile.accumulator.reset();
+      stats.samples += tile.samples;
+      stats.invalidSamples += tile.invalid;
+      busy = true;
+    }
+    if (!localOpen && workersOpen == 0 && consumed == next && local.done()) break;
+    if (!busy) local.waitForFinished(PollInterval);
+  }
+  if (ownProgress) ownProgress->finish();
+  stats.completed = !cancelled;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  reportTileStream(stats);
+  std::string counts;
+  for (size_t n : perRank) counts += str(" ", n);
+  logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
+           bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)");
+  return stats;
+}
+
+void MpiTileDistribution::work(TileJob& job) {
+  LocalTiles local(job);
+  bool asking = false, open = true;
+  std::vector<float> buffer;
+  while (open || !local.done()) {
+    bool busy = false;
+    // One request in flight at a time, for what the threads here lack.
+    if (open && !asking && local.pending() < local.wanted()) {
+      uint64_t count = local.wanted() - local.pending();
+      check(MPI_Send(&count, 1, MPI_UINT64_T, 0, Request, comm_), "send");
+      asking = true;
+    }
+    int flag = 0;
+    MPI_Status status;
+    check(MPI_Iprobe(0, Assign, comm_, &flag, &status), "probe");
+    if (flag) {
+      int count = 0;
+      MPI_Get_count(&status, MPI_UINT64_T, &count);
+      std::vector<uint64_t> ids(static_cast<size_t>(count));
+      check(MPI_Recv(ids.data(), count, MPI_UINT64_T, 0, Assign, comm_, MPI_STATUS_IGNORE), "receive");
+      asking = false, busy = true;
+      if (ids.empty()) local.close(), open = false;
+      for (uint64_t id : ids) local.assign(&job.tiles.at(id));
+    }
+    for (RenderTile* tile : local.takeFinished()) {
+      busy = true;
+      tile->accumulator->pack(buffer);
+      TileHeader header{tile->index, tile->samples, tile->invalid};
+      buffer.insert(buffer.begin(), HeaderFloats, 0.0f);
+      std::memcpy(buffer.data(), &header, sizeof(header));
+      tile->accumulator.reset();
+      MPI_Request request;
+      check(MPI_Isend(buffer.data(), int(buffer.size()), MPI_FLOAT, 0, TileData, comm_, &request), "send");
+      waitSleeping(request);  // until rank 0 takes it (it may be folding tiles)
+    }
+    if (!busy) local.waitForFinished(PollInterval);
+  }
+}
+
+}  // namespace femto::cli

@@ -1,0 +1,36 @@
+#pragma once
+// Tiles shared between MPI ranks, dynamically: rank 0 hands out tile indices
+// in tile order to whichever rank asks (itself included), each rank renders
+// its tiles with its own threads and sends the raw sums back, and rank 0
+// folds every tile into the film in tile order, exactly as one process
+// would. Each pixel's sampler is seeded from (seed, pixel index), so where a
+// tile was rendered changes nothing: the output is bitwise that of one
+// process, whatever the rank and thread counts. Rank 0 is the only writer
+// (no MPI-IO: docs/BENCHMARKS.md measures why one writer is enough here).
+//
+// Messages (MPI_COMM_WORLD, only the main thread of each rank calls MPI):
+//   worker -> 0  Request   one uint64: how many more tiles it wants
+//   0 -> worker  Assign    uint64 tile indices, in order; none: no more
+//   worker -> 0  TileData  a header (index, samples, invalid) then the packed sums
+// and at the end of each stream a broadcast of the job's statistics, so every
+// rank stops (a cancel) or goes on to the next pass together.
+#include <mpi.h>
+
+#include <femto/loop/tile_distribution.h>
+
+namespace femto::cli {
+
+class MpiTileDistribution final : public TileDistribution {
+ public:
+  explicit MpiTileDistribution(MPI_Comm comm);
+  RenderStats run(TileJob& job) override;
+
+ private:
+  RenderStats coordinate(TileJob& job);
+  void work(TileJob& job);
+  RenderStats shareStats(const RenderStats& stats);
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace femto::cli
