@@ -13,6 +13,7 @@
 #include <femto/render/scene.h>
 #include <femto/transport/optical_path.h>
 #include <femto/transport/volumetric.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/medium_extent.h>
 
 namespace femto::beams {
@@ -165,6 +166,10 @@ MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceIntera
   if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
     // From the exact vertex, so the beam's OPL and geometry agree.
     float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
+    // Long beams end by Russian roulette once their transmittance is low
+    // (beam_roulette.h); the camera side weights them by 1 / survival.
+    const BeamRoulette roulette = BeamRoulette::of(*ph.medium);
+    if (roulette.active()) length = std::min(length, roulette.sampleLength(sampler.next1D()));
     if (length > 0.0f && std::isfinite(length))
       beams.push_back(
           Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium});
