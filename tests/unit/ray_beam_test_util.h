@@ -88,16 +88,21 @@ struct Overlap {
   double tLast = -std::numeric_limits<double>::infinity();
   double oplMin = std::numeric_limits<double>::infinity();  // OPL extremes over the inside samples
   double oplMax = -std::numeric_limits<double>::infinity();
+  double gapMax = 0.0;  // largest distance to the beam's axis over the inside samples
+  // Earliest OPL of a real path beam start -> y(s) -> x(t) -> ray.o over the
+  // inside samples (the lateral gap crossed at the beam's eta): causality's bound.
+  double causalMin = std::numeric_limits<double>::infinity();
   double step = 0.0;                                      // march step: the reference's resolution
 };
 
-inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = nullptr) {
+inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = nullptr, double* gapOut = nullptr) {
   Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
   Vec3d v = toD(p.beam.direction);
   Vec3d rel = x - toD(p.beam.origin);
   double s = dotD(rel, v);
   Vec3d perp = rel - v * s;
   if (sOut) *sOut = s;
+  if (gapOut) *gapOut = std::sqrt(dotD(perp, perp));
   return s >= 0 && s <= p.beam.length && dotD(perp, perp) < double(radius) * radius;
 }
 
@@ -107,14 +112,16 @@ inline Overlap marchOverlap(const Pair& p, float radius, int steps, double t0 = 
   Overlap o;
   o.step = (t1 - t0) / steps;
   for (int i = 0; i < steps; ++i) {
-    double t = t0 + (i + 0.5) * o.step, s = 0;
-    if (!insideKernel(p, radius, t, &s)) continue;
+    double t = t0 + (i + 0.5) * o.step, s = 0, gap = 0;
+    if (!insideKernel(p, radius, t, &s, &gap)) continue;
     o.length += o.step;
     o.tFirst = std::min(o.tFirst, t);
     o.tLast = std::max(o.tLast, t);
     double opl = double(p.segment.eta) * t + double(p.beam.eta) * s;
     o.oplMin = std::min(o.oplMin, opl);
     o.oplMax = std::max(o.oplMax, opl);
+    o.gapMax = std::max(o.gapMax, gap);
+    o.causalMin = std::min(o.causalMin, opl + double(p.beam.eta) * gap);
   }
   return o;
 }

@@ -65,7 +65,8 @@ std::vector<double> estimate(const TimeDeposit& dep, RayBeamKernel kernel, std::
 }
 
 /// Pencil average of a marched density: each step inside the kernel region
-/// carries its mass, spread over the OPLs the step covers. `oneD` false: the
+/// carries its mass, spread over the OPLs the step covers (camera OPL + beam
+/// OPL to the projection + the ray's largest lateral gap, ray_beam.h). `oneD` false: the
 /// blurred beam, 1/(pi r^2) per unit length. `oneD` true: the 1D kernel's
 /// definition, each pass carrying 1/(2 r sin(theta)) spread evenly over its
 /// (marched) chord.
@@ -79,6 +80,13 @@ std::vector<double> marchedReference(const TimeDeposit& dep, double step, bool o
     for (int j = 0; j < Pencil::acrossBeam; ++j) {
       Pair p = Pencil::ray(i, j);
       double density = 1.0 / (DoublePi * Pencil::r * Pencil::r);
+      // The estimate's causal shift: the largest lateral gap over the ray's
+      // overlap, crossed at the beam's eta (1), added to every instant.
+      double gapMax = 0;
+      for (int k = 0; k < steps; ++k) {
+        double sBeam = 0, gap = 0;
+        if (test::insideKernel(p, Pencil::r, tAt(k), &sBeam, &gap)) gapMax = std::max(gapMax, gap);
+      }
       if (oneD) {
         int inside = 0;
         for (int k = 0; k < steps; ++k) inside += test::insideKernel(p, Pencil::r, tAt(k));
@@ -89,7 +97,7 @@ std::vector<double> marchedReference(const TimeDeposit& dep, double step, bool o
       for (int k = 0; k < steps; ++k) {
         double t = tAt(k), sBeam = 0;
         if (!test::insideKernel(p, Pencil::r, t, &sBeam)) continue;
-        double opl = t + sBeam;  // eta = 1 on both
+        double opl = t + sBeam + gapMax;  // eta = 1 on both
         dep.interval(opl - 0.5 * rate * step, opl + 0.5 * rate * step, s);
         accumulate(s, density * step / Pencil::rays(), bins);
       }
