@@ -31,6 +31,7 @@ import numpy as np
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SUITE = os.path.join(ROOT, "tools", "bench", "media_suite")
+RADIUS_CASES = os.path.join(ROOT, "tools", "bench", "beams_radius")
 TOF = os.path.abspath(os.path.join(ROOT, "..", "shared", "scenes", "tof-tungsten-cbox-trans"))
 EPSILON = 0.01
 STATS = re.compile(r"beam queries \(([0-9.e+-]+) candidates and ([0-9.e+-]+) pair hits each\)")
@@ -118,11 +119,12 @@ def cases(out_dir, quick):
         dict(name="fog box, 1024 bins", scene=fog,
              defines=dict(resolution=32, bins=1024, bin_width=0.01, frames="false"),
              path=dict(spp=64 * s), beams=dict(passes=1 * s), reference_spp=2048),
-        dict(name="large medium", scene=os.path.join(SUITE, "large-medium.xml"), defines={},
+        # Issue 14's two single-scattering cases, shared with tools/bench/beams_radius_cases.py.
+        dict(name="large medium", scene=os.path.join(RADIUS_CASES, "large_medium.xml"), defines={},
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),
         dict(name="thick medium", scene=os.path.join(SUITE, "thick-medium.xml"), defines={},
              path=dict(spp=64 * s), beams=dict(passes=2 * s, spp=16), reference_spp=2048),
-        dict(name="box, light outside", scene=os.path.join(SUITE, "box-light-outside.xml"), defines={},
+        dict(name="box, light outside", scene=os.path.join(RADIUS_CASES, "bounded_box.xml"), defines={},
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),
     ]
     if os.path.exists(os.path.join(TOF, "reference.npy")):

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Regenerates the "media-suite" section of docs/BENCHMARKS.md: transient_beams
 # against transient_path at equal CPU time on the media suite
-# (tools/bench/media_suite/: a large medium, a thick medium, a box lit from
-# outside; the fog Cornell box at 256 and 1024 bins; ToF-Tungsten's fog
+# (issue 14's large medium and box lit from outside, tools/bench/beams_radius/;
+# a thick medium, tools/bench/media_suite/; the fog Cornell box at 256 and
+# 1024 bins; ToF-Tungsten's fog
 # Cornell box when ../shared/scenes/tof-tungsten-cbox-trans is present).
 #   tools/bench/run_media_suite.sh [build-dir]        (default: build)
 # MEDIA_QUICK=1 halves the budgets. Small images (32x32, the port 64x64) so
