@@ -77,12 +77,16 @@ constexpr uint64_t PhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
 struct PassTotals {
   int passes = 0;
   uint64_t beams = 0, surfacePhotons = 0, photons = 0;
+  uint64_t pieces = 0;      // beam map pieces (beam_map.h): how finely the beams were cut for tight boxes
+  double beamLength = 0.0;  // summed beam length (after the roulette, beam_roulette.h)
   double traceSeconds = 0.0, buildSeconds = 0.0;
   beams::CameraStatistics camera;
 
   void add(const beams::BeamPass& pass) {
     ++passes;
     beams += pass.beamMap().beams().size();
+    pieces += pass.beamMap().pieceCount();
+    for (const beams::Beam& b : pass.beamMap().beams()) beamLength += b.length;
     surfacePhotons += pass.photonMap().size();
     photons += pass.maps().photonCount;
     traceSeconds += pass.traceSeconds();
@@ -97,8 +101,10 @@ struct PassTotals {
     const double cameraSeconds = std::max(seconds - traceSeconds - buildSeconds, 1e-9);
     const double rays = double(std::max<uint64_t>(camera.cameraRays, 1));
     const double segments = double(std::max<uint64_t>(camera.segments, 1));
+    const double beamCount = double(std::max<uint64_t>(beams, 1));
     return str("transient_beams: ", passes, " passes, ", photons, " photons, ", beams, " beams, ", surfacePhotons,
-               " surface photons; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
+               " surface photons; beams: mean length ", beamLength / beamCount, ", ", double(pieces) / beamCount,
+               " map pieces each; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
                cameraSeconds, " s; ", camera.cameraRays, " camera rays, ", camera.segments, " beam queries (",
                double(camera.candidates) / segments, " candidates and ", double(camera.pairHits) / segments,
                " pair hits each), ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
