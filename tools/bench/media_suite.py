@@ -56,6 +56,10 @@ def render(femto, scene, out, defines, seed):
     return os.path.splitext(out)[0] + ".npy", cpu, wall, proc.stdout
 
 
+def slug(name):
+    return re.sub("[^a-z0-9]+", "-", name.lower()).strip("-")
+
+
 def relmse(x, ref):
     m = ref.mean()
     return float(np.mean((x - ref) ** 2 / (ref ** 2 + EPSILON * m * m)))
@@ -67,10 +71,10 @@ def cached_path_reference(femto, case, out_dir):
     variance is (a - b)^2 / 2 per value, the mean's a quarter of that."""
     defines = dict(case["defines"], integrator="transient_path", spp=case["reference_spp"])
     key = hashlib.sha1((open(case["scene"]).read() + repr(sorted(defines.items()))).encode()).hexdigest()[:12]
-    path = os.path.join(out_dir, f"ref-{case['name']}-{key}.npy")
+    path = os.path.join(out_dir, f"ref-{slug(case['name'])}-{key}.npy")
     renders = []
     for seed in (7919, 7920):
-        file = os.path.join(out_dir, f"ref-{case['name']}-{key}-{seed}.exr")
+        file = os.path.join(out_dir, f"ref-{slug(case['name'])}-{key}-{seed}.exr")
         npy = os.path.splitext(file)[0] + ".npy"
         if not os.path.exists(npy):
             print(f"  reference {case['name']} seed {seed} ({case['reference_spp']} spp) ...", flush=True)
@@ -151,7 +155,7 @@ def main(argv):
         for integrator in ("transient_path", "transient_beams"):
             budget = case["path" if integrator == "transient_path" else "beams"]
             defines = dict(case["defines"], integrator=integrator, **budget)
-            out = os.path.join(args.out, f"{re.sub('[^a-z0-9]+', '-', case['name'])}-{integrator}.exr")
+            out = os.path.join(args.out, f"{slug(case['name'])}-{integrator}.exr")
             npy, cpu, wall, log = render(args.femto, case["scene"], out, defines, seed=1)
             x = np.load(npy).astype(np.float64)
             e = relmse(x, ref)

@@ -6,20 +6,30 @@
 # 1024 bins; ToF-Tungsten's fog
 # Cornell box when ../shared/scenes/tof-tungsten-cbox-trans is present).
 #   tools/bench/run_media_suite.sh [build-dir]        (default: build)
-# MEDIA_QUICK=1 halves the budgets. Small images (32x32, the port 64x64) so
+# MEDIA_QUICK=1 halves the budgets; MEDIA_LOG=FILE formats the printed output
+# of an earlier media_suite.py run instead of rendering (MEDIA_NOTE: a line
+# saying which build rendered it). Small images (32x32, the port 64x64) so
 # that it finishes in about 20 minutes on a loaded 2-core machine; the
 # references are cached in BUILD/media-suite.
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-build}
 cd "$root"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j2 --target femto transient_beams transient_path >/dev/null
+if [ -z "${MEDIA_LOG:-}" ]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build" -j2 --target femto transient_beams transient_path >/dev/null
+fi
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
-/usr/bin/python3 tools/bench/media_suite.py --femto "$build/bin/femto" --out "$build/media-suite" \
-  ${MEDIA_QUICK:+--quick} | tee "$out.log" | sed -n '/^| /p' > "$out"
+if [ -n "${MEDIA_LOG:-}" ]; then
+  # Format the output of an earlier media_suite.py run instead of rendering again.
+  sed -n '/^|/p' "$MEDIA_LOG" > "$out"
+  load_before="(of the run logged in $MEDIA_LOG)"
+else
+  /usr/bin/python3 tools/bench/media_suite.py --femto "$build/bin/femto" --out "$build/media-suite" \
+    ${MEDIA_QUICK:+--quick} | sed -n '/^|/p' > "$out"
+fi
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 . "$root/tools/bench/provenance.sh"
 {
@@ -29,7 +39,7 @@ load_after=$(cut -d' ' -f1-3 /proc/loadavg)
   echo
   echo "- machine: $model, $(nproc) logical CPUs; load average before / after: $load_before / $load_after"
   echo "- commit: $commit$dirty, $(date -u +%Y-%m-%d)"
-  echo "- command: \`tools/bench/media_suite.py${MEDIA_QUICK:+ --quick}\`"
+  echo "- command: \`tools/bench/media_suite.py${MEDIA_QUICK:+ --quick}\`${MEDIA_NOTE:+; $MEDIA_NOTE}"
   echo
   echo "One render per integrator and scene (seed 1) at the budget shown; relMSE (ε = 0.01) against the"
   echo "mean of two long \`transient_path\` renders (seeds 7919, 7920) with the reference's own error,"
@@ -38,7 +48,7 @@ load_after=$(cut -d' ' -f1-3 /proc/loadavg)
   echo "CPU: user + system seconds of the femto process. *relMSE×CPU path / beams* is the ratio of the"
   echo "two integrators' relMSE at equal CPU time (> 1: beams better). Images are small (32×32) to fit"
   echo "the machine; the scenes' files say what each one is. transient_beams runs with its defaults"
-  echo "(the radius it derives, Russian roulette on beams and camera gathers) except the scene's"
+  echo "(the radius it derives, Russian roulette along beams) except the scene's"
   echo "\`store\` and \`max_depth\` and the camera samples per pass shown (\`spp\`; the fog box uses its"
   echo "scene file's settings)."
   echo
