@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <femto/base/error.h>
+#include <femto/base/temp_files.h>
 
 namespace femto {
 
@@ -14,6 +15,7 @@ void writeAtomically(const std::filesystem::path& path, Writer&& writer) {
   fs::create_directories(dir, ec);
   // Keep the real extension last: image libraries pick the format from it.
   fs::path tmp = dir / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+  TempFileGuard guard(tmp);  // a signal that ends the process removes it too
   try {
     writer(tmp);
   } catch (...) {
