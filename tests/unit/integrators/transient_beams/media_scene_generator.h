@@ -9,9 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
-#include <femto/base/str.h>
+#include <femto/base/error.h>  // str()
 #include <femto/math/pcg32.h>
+#include <femto/render/scene.h>
+#include <femto/render/sensor.h>
 #include <femto/math/vector.h>
 #include <femto/time/time_grid.h>
 
@@ -72,6 +75,26 @@ struct MediaScene {
                R"(<emitter type="point"><point name="position" x=")", m.light.x, R"(" y=")", m.light.y, R"(" z=")",
                m.light.z, R"("/><rgb name="intensity" value=")", m.intensity, R"("/>)", lightInside() ? inMedium : "",
                R"(</emitter></scene>)");
+  }
+
+  /// Per fine bin: the closed form summed over the film's pixels, each the
+  /// mean of 4x4 sub-rays of `scene`'s sensor (a smooth image: the light out
+  /// of view; with it in view the pixel holding it is only approximated).
+  std::vector<double> closedFormImageSums(const Scene& scene, int steps = 20000) const {
+    std::vector<double> sums(size_t(grid.bins), 0.0);
+    const Sensor& sensor = scene.sensor();
+    const int n = 4;
+    for (int y = 0; y < resolution; ++y)
+      for (int x = 0; x < resolution; ++x)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) {
+            Ray ray;
+            sensor.sampleRay(Point2f(x + (i + 0.5f) / n, y + (j + 0.5f) / n), Point2f(0.5f), ray);
+            double total = 0.0;
+            std::vector<double> b = model.bins(ray.o, ray.d, grid, total, 40.0, steps);
+            for (size_t k = 0; k < b.size(); ++k) sums[k] += b[k] / (n * n);
+          }
+    return sums;
   }
 
   /// The film window: 16 bins from two bins before the earliest arrival
