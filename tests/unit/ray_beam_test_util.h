@@ -88,11 +88,11 @@ struct Overlap {
   double tLast = -std::numeric_limits<double>::infinity();
   double oplMin = std::numeric_limits<double>::infinity();  // OPL extremes over the inside samples
   double oplMax = -std::numeric_limits<double>::infinity();
-  double gapMax = 0.0;  // largest distance to the beam's axis over the inside samples
-  // Earliest OPL of a real path beam start -> y(s) -> x(t) -> ray.o over the
-  // inside samples (the lateral gap crossed at the beam's eta): causality's bound.
-  double causalMin = std::numeric_limits<double>::infinity();
   double step = 0.0;                                      // march step: the reference's resolution
+  // The causal OPL g(t) = eta_c t + eta_b |x(t) - beam start| (ray_beam.cpp):
+  // at the first and last inside samples, and its minimum over them.
+  double causalFirst = 0.0, causalLast = 0.0;
+  double causalMin = std::numeric_limits<double>::infinity();
 };
 
 inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = nullptr, double* gapOut = nullptr) {
@@ -106,22 +106,32 @@ inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = n
   return s >= 0 && s <= p.beam.length && dotD(perp, perp) < double(radius) * radius;
 }
 
+/// The OPL a real path from the beam's start to x(t) and along the camera
+/// segment to its origin takes at least: eta_c t + eta_b |x(t) - start|.
+inline double causalOpl(const Pair& p, double t) {
+  Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
+  Vec3d rel = x - toD(p.beam.origin);
+  return double(p.segment.eta) * t + double(p.beam.eta) * std::sqrt(dotD(rel, rel));
+}
+
 /// Midpoint march over [t0, t1] (default the whole segment) with `steps` samples.
 inline Overlap marchOverlap(const Pair& p, float radius, int steps, double t0 = 0.0, double t1 = -1.0) {
   if (t1 < 0) t1 = p.segment.tMax;
   Overlap o;
   o.step = (t1 - t0) / steps;
   for (int i = 0; i < steps; ++i) {
-    double t = t0 + (i + 0.5) * o.step, s = 0, gap = 0;
-    if (!insideKernel(p, radius, t, &s, &gap)) continue;
+    double t = t0 + (i + 0.5) * o.step, s = 0;
+    if (!insideKernel(p, radius, t, &s)) continue;
     o.length += o.step;
     o.tFirst = std::min(o.tFirst, t);
     o.tLast = std::max(o.tLast, t);
     double opl = double(p.segment.eta) * t + double(p.beam.eta) * s;
     o.oplMin = std::min(o.oplMin, opl);
     o.oplMax = std::max(o.oplMax, opl);
-    o.gapMax = std::max(o.gapMax, gap);
-    o.causalMin = std::min(o.causalMin, opl + double(p.beam.eta) * gap);
+    const double g = causalOpl(p, t);
+    if (t == o.tFirst) o.causalFirst = g;
+    o.causalLast = g;
+    o.causalMin = std::min(o.causalMin, g);
   }
   return o;
 }

@@ -68,7 +68,12 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
 
 bool CameraTracer::crossMedium(const Scene& scene, Path& s, bool hit, const SurfaceInteraction& si, Sampler& sampler,
                                RadianceRecorder& recorder) {
-  float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, recorder.horizon());
+  // An unbounded segment ends where its OPL passes the horizon, unless it
+  // adds no OPL (observer time off): then light scattered far along it still
+  // arrives in time, and only the transmittance bounds it.
+  const bool counted = segmentCounts(settings_.observerTime, s.cameraSegment);
+  float tMax = hit ? distance(s.vertex, si.p)
+                   : unboundedSegmentLength(*s.medium, s.opl, counted ? recorder.horizon() : Infinity);
   if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, sampler, recorder);
   if (!hit) return false;  // escaping through a medium: attenuated to nothing
   s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);

@@ -11,7 +11,7 @@
 
 namespace femto::beams {
 
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon) {
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime) {
   std::vector<ProbeSegment> probes;
   const Sensor& sensor = scene.sensor();
   const Film& film = sensor.film();
@@ -30,17 +30,18 @@ std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon) {
         SurfaceInteraction si;
         const bool hit = scene.rayIntersect(path.ray, si);
         if (path.medium) {
-          const float tMax =
-              hit ? distance(path.vertex, si.p) : unboundedSegmentLength(*path.medium, path.opl, horizon);
+          // As the camera tracer's segments (observer time off: no horizon on the first).
+          const float tMax = hit ? distance(path.vertex, si.p)
+                                 : unboundedSegmentLength(*path.medium, path.opl, observerTime ? horizon : Infinity);
           if (tMax > 0.0f && std::isfinite(tMax)) {
             ProbeSegment& p = probes.emplace_back();
             p.segment.ray = Ray(path.vertex, path.ray.d);
             p.segment.tMax = tMax;
-            p.segment.eta = path.medium->eta();
+            p.segment.eta = observerTime ? path.medium->eta() : 0.0f;
             p.medium = path.medium;
           }
         }
-        if (!hit || !path.advance(si.p) || path.opl >= horizon || !isPassThrough(si)) break;
+        if (!hit || !path.advance(si.p, observerTime) || path.opl >= horizon || !isPassThrough(si)) break;
         path.crossBoundary(si);
       }
     }

@@ -18,8 +18,9 @@ namespace femto::beams {
 
 /// Probes through ProbeGrid x ProbeGrid film positions (pixel-cell centres of
 /// the crop window, aperture centre); unbounded pieces end as camera
-/// segments do (unboundedSegmentLength, with `horizon`). Deterministic.
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon);
+/// segments do (unboundedSegmentLength, with `horizon`; camera segments add
+/// no OPL without `observerTime`). Deterministic.
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime);
 
 constexpr int ProbeGrid = 8;
 

@@ -22,10 +22,10 @@ constexpr float Perpendicular = 1e-12f;
 // of the slab-clipped segment.
 constexpr float ParallelSin2 = 1e-10f;
 
-/// Distance from x(t) to the beam's axis, |dPerp + t wPerp|, in double.
-double axisDistance(const Vec3f& dPerp, const Vec3f& wPerp, float t) {
-  const double x = double(dPerp.x) + double(t) * wPerp.x, y = double(dPerp.y) + double(t) * wPerp.y,
-               z = double(dPerp.z) + double(t) * wPerp.z;
+/// Distance from ray.o + t w to the beam's start, |delta + t w| (delta = ray.o - b), in double.
+double startDistance(const Vec3f& delta, const Vec3f& w, float t) {
+  const double x = double(delta.x) + double(t) * w.x, y = double(delta.y) + double(t) * w.y,
+               z = double(delta.z) + double(t) * w.z;
   return std::sqrt(x * x + y * y + z * z);
 }
 
@@ -100,21 +100,19 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
   hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 
-  // OPL along the overlap: eta_c t + eta_b s(t), linear in t, plus the
-  // lateral gap from the beam point y(s(t)) to x(t), crossed at the beam's
-  // eta. The gap is taken at its largest over the overlap (the distance to
-  // the axis is convex in t: at an end), a constant per pair, so the deposit
-  // stays one uniform interval and every instant of it is at least the OPL
-  // of a real path beam start -> y(s) -> x(t) -> ray.o; by the triangle
-  // inequality no estimate arrives before light could (causality by
-  // construction, docs/photon-beams.md, "Causality"). The far end adds rate *
-  // length in double, so a stationary pair (rate 0) collapses exactly
-  // instead of through the cancellation of two large OPLs.
-  const double sBegin = std::clamp(double(s0) + double(tBegin) * cosTheta, 0.0, double(length));
-  const double gap = std::max(axisDistance(dPerp, wPerp, tBegin), axisDistance(dPerp, wPerp, tEnd));
-  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * (sBegin + gap);
-  const double rate = double(segment.eta) + double(beam.eta) * double(cosTheta);
-  const double oplB = oplA + rate * (double(tEnd) - double(tBegin));
+  // Causal OPL (docs/photon-beams.md, "Causality"): light at camera point
+  // x(t) came from the beam's start b, which it left at beam.opl, and
+  // travelled at least |x(t) - b| in the medium (eta_b): g(t) = eta_c t +
+  // eta_b |x(t) - b|. Away from the start |x(t) - b| = s(t) + gap^2 / (2 s):
+  // the projection's OPL eta_c t + eta_b s(t) up to second order; near the
+  // start (the kernel straddling the light cone) it keeps every estimate
+  // after the light could arrive. g is convex in t, so the straight line
+  // between its values at the overlap's ends lies above it: the deposit,
+  // uniform over [g(tBegin), g(tEnd)], is that line, never earlier than g,
+  // and by the triangle inequality never before the earliest path
+  // b -> x(t) -> ray.o.
+  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * startDistance(delta, w, tBegin);
+  const double oplB = double(segment.eta) * tEnd + double(beam.eta) * startDistance(delta, w, tEnd);
   hit.oplBegin = std::min(oplA, oplB);
   hit.oplEnd = std::max(oplA, oplB);
 

@@ -146,7 +146,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
         if (pass == 0 && !(settings.radius > 0.0f)) {
           beams::DerivedRadius derived;
-          settings = settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon),
+          settings = settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon, settings.observerTime),
                                                  filmTimeGrid(scene), scene.bbox(), &derived);
           logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
                   derived.time, ", boundary ", derived.boundary, ")");
