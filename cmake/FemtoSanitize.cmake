@@ -15,3 +15,15 @@ if(FEMTO_SANITIZE_FLAGS)
   add_compile_options(${FEMTO_SANITIZE_FLAGS} -g)
   add_link_options(${FEMTO_SANITIZE_FLAGS})
 endif()
+
+# FEMTO_FUZZ: the libFuzzer target over the scene loader (tests/fuzz), run by
+# tools/fuzz/run_scene_fuzzer.sh. Needs clang; instruments everything for
+# coverage (fuzzer-no-link) with ASan + UBSan.
+option(FEMTO_FUZZ "Build the libFuzzer scene-loader target (clang only)" OFF)
+if(FEMTO_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "FEMTO_FUZZ needs clang (-DCMAKE_CXX_COMPILER=clang++), not ${CMAKE_CXX_COMPILER_ID}")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -g)
+  add_link_options(-fsanitize=address,undefined)
+endif()
