@@ -89,16 +89,29 @@ struct Overlap {
   double oplMin = std::numeric_limits<double>::infinity();  // OPL extremes over the inside samples
   double oplMax = -std::numeric_limits<double>::infinity();
   double step = 0.0;                                      // march step: the reference's resolution
+  // The causal OPL g(t) = eta_c t + eta_b |x(t) - beam start| (ray_beam.cpp):
+  // at the first and last inside samples, and its minimum over them.
+  double causalFirst = 0.0, causalLast = 0.0;
+  double causalMin = std::numeric_limits<double>::infinity();
 };
 
-inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = nullptr) {
+inline bool insideKernel(const Pair& p, float radius, double t, double* sOut = nullptr, double* gapOut = nullptr) {
   Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
   Vec3d v = toD(p.beam.direction);
   Vec3d rel = x - toD(p.beam.origin);
   double s = dotD(rel, v);
   Vec3d perp = rel - v * s;
   if (sOut) *sOut = s;
+  if (gapOut) *gapOut = std::sqrt(dotD(perp, perp));
   return s >= 0 && s <= p.beam.length && dotD(perp, perp) < double(radius) * radius;
+}
+
+/// The OPL a real path from the beam's start to x(t) and along the camera
+/// segment to its origin takes at least: eta_c t + eta_b |x(t) - start|.
+inline double causalOpl(const Pair& p, double t) {
+  Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
+  Vec3d rel = x - toD(p.beam.origin);
+  return double(p.segment.eta) * t + double(p.beam.eta) * std::sqrt(dotD(rel, rel));
 }
 
 /// Midpoint march over [t0, t1] (default the whole segment) with `steps` samples.
@@ -115,6 +128,10 @@ inline Overlap marchOverlap(const Pair& p, float radius, int steps, double t0 = 
     double opl = double(p.segment.eta) * t + double(p.beam.eta) * s;
     o.oplMin = std::min(o.oplMin, opl);
     o.oplMax = std::max(o.oplMax, opl);
+    const double g = causalOpl(p, t);
+    if (t == o.tFirst) o.causalFirst = g;
+    o.causalLast = g;
+    o.causalMin = std::min(o.causalMin, g);
   }
   return o;
 }

@@ -25,6 +25,8 @@ struct Beam {
   Vec3f direction;                 // unit length, the direction light travels
   float length = 0.0f;             // > 0 and finite: up to the next surface ("long" beam: the photon may scatter
                                    // earlier; estimates weight the beam by its transmittance, Jarosz et al. 2011 sec. 5.2)
+                                   // or to where Russian roulette ended it (estimates divide by the survival
+                                   // probability, beam_roulette.h)
   Color3f power{0.0f};             // photon power (flux) at `origin`, before attenuation along the beam
   double opl = 0.0;                // OPL at `origin` since emission (emission offset + delays + sum eta*d)
   float eta = 1.0f;                // refractive index of the medium crossed: OPL per unit length

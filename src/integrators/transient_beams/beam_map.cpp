@@ -285,8 +285,7 @@ size_t BeamMap::nodeCount() const { return impl_ ? impl_->nodes.size() : 0; }
 
 size_t BeamMap::memoryBytes() const {
   size_t bytes = sizeof(*this) + beams_.capacity() * sizeof(Beam);
-  if (impl_)
-    bytes += sizeof(Impl) + impl_->pieces.capacity() * sizeof(Piece) + impl_->nodes.capacity() * sizeof(Node);
+  if (impl_) bytes += sizeof(Impl) + impl_->pieces.capacity() * sizeof(Piece) + impl_->nodes.capacity() * sizeof(Node);
   return bytes;
 }
 
@@ -333,17 +332,21 @@ void BeamMap::traverse(const CameraSegment& segment, Report&& report) const {
   }
   const Node* nodes = impl_->nodes.data();
   const Piece* pieces = impl_->pieces.data();
+  // Children are tested before they are pushed, so only nodes the segment
+  // crosses go through the stack (every popped node is a hit).
+  if (!s.hits(nodes[0].lo, nodes[0].hi)) return;
   uint32_t stack[StackSize];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes[stack[--top]];
-    if (!s.hits(node.lo, node.hi)) continue;
     if (node.count == 0) {
-      stack[top++] = node.index;
-      stack[top++] = uint32_t(&node - nodes) + 1;
+      const uint32_t left = uint32_t(&node - nodes) + 1, right = node.index;
+      if (s.hits(nodes[right].lo, nodes[right].hi)) stack[top++] = right;
+      if (s.hits(nodes[left].lo, nodes[left].hi)) stack[top++] = left;
       continue;
     }
+    // A one-piece leaf's box is its piece's, already tested.
     for (uint32_t i = node.index; i < node.index + node.count; ++i)
       if (node.count == 1 || s.hits(pieces[i].box.min, pieces[i].box.max)) report(pieces[i].beam);
   }

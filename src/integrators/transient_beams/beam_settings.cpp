@@ -10,9 +10,10 @@ namespace {
 
 /// Default radii as fractions of the scene's bounding-box diagonal: small
 /// enough that the kernel blur stays below a pixel's footprint in typical
-/// views, large enough for ~1e5 photons to give a usable first pass.
+/// views, large enough for ~1e5 photons to give a usable first pass. The
+/// beam radius uses them only when nothing else bounds it (withBeamRadiusFrom).
 constexpr float BeamRadiusFraction = 0.005f, SurfaceRadiusFraction = 0.01f;
-/// Upper bound of the derived beam radius, as a fraction of the diagonal.
+/// Upper bound of the beams' spread radius, as a fraction of the diagonal.
 constexpr float MaxBeamRadiusFraction = 0.01f;
 
 /// Product over passes 0..pass-1 of (i + alpha) / (i + 1).
@@ -42,12 +43,12 @@ BeamSettings BeamSettings::parse(const Properties& props) {
                                     "the probability that a camera segment gathers beams");
   s.alpha = props.getFloat("alpha", s.alpha, Range::leftOpen(0, 1));
   static_cast<PathDepthSettings&>(s) = PathDepthSettings::read(props);
-  s.store = props.getEnum("store", BeamStore::All, {{"all", BeamStore::All, "every scattering order"},
-                                                    {"single", BeamStore::Single, "single scattering"}});
-  s.volumeEstimator = props.getEnum(
-      "volume_estimator", VolumeEstimator::Beams,
-      {{"beams", VolumeEstimator::Beams, "photon beams, ray x beam 1D"},
-       {"points", VolumeEstimator::Points, "photon points, the beam radiance estimate"}});
+  s.store = props.getEnum(
+      "store", BeamStore::All,
+      {{"all", BeamStore::All, "every scattering order"}, {"single", BeamStore::Single, "single scattering"}});
+  s.volumeEstimator = props.getEnum("volume_estimator", VolumeEstimator::Beams,
+                                    {{"beams", VolumeEstimator::Beams, "photon beams, ray x beam 1D"},
+                                     {"points", VolumeEstimator::Points, "photon points, the beam radiance estimate"}});
   s.observerTime = props.getBool("observer_time", true);
   s.hideEmitters = props.getBool("hide_emitters", false);
   return s;
@@ -55,18 +56,31 @@ BeamSettings BeamSettings::parse(const Properties& props) {
 
 BeamSettings BeamSettings::resolved(const BoundingBox3f& sceneBounds) const {
   BeamSettings s = *this;
-  if (s.radius > 0.0f && s.surfaceRadius > 0.0f) return s;
+  if (s.surfaceRadius > 0.0f) return s;
+  // No shapes: no surface photons are stored or gathered, the radius is unused.
+  if (!sceneBounds.valid()) {
+    s.surfaceRadius = 1.0f;
+    return s;
+  }
   float diagonal = 2.0f * sceneBounds.boundingRadius();
   if (!(diagonal > 0.0f) || !std::isfinite(diagonal))
-    throw Error(location, "transient_beams: the scene has no finite extent to derive the kernel radii from; give "
-                          "\"radius\" and \"surface_radius\"");
-  if (!(s.surfaceRadius > 0.0f)) s.surfaceRadius = SurfaceRadiusFraction * diagonal;
+    throw Error(location,
+                "transient_beams: the scene has no finite extent to derive the surface kernel radius "
+                "from; give \"surface_radius\"");
+  s.surfaceRadius = SurfaceRadiusFraction * diagonal;
   return s;
 }
 
-BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, const BoundingBox3f& sceneBounds) const {
-  BeamSettings s = *this;
-  if (s.radius > 0.0f) return s;
+namespace {
+
+/// The beams' spread, for a view with no probes (no medium seen straight from
+/// the camera): with total beam length L in a bounding box of volume V, a
+/// segment of length V^(1/3) through beams spread evenly and isotropically
+/// meets about L V^(1/3) 2r (pi/4) / V of them (pi/4: the mean |sin| of
+/// isotropic directions), so r = 2 H V^(2/3) / (pi L); P photon points meet
+/// it in a cylinder of volume pi r^2 V^(1/3): r = sqrt(H V^(2/3) / (pi P)).
+/// At most 1 % of the scene's diagonal; beams spanning no volume: 0.5 %.
+double spreadRadius(const std::vector<Beam>& beams, bool points, const BoundingBox3f& sceneBounds) {
   double length = 0.0;
   BoundingBox3f box;
   for (const Beam& b : beams) {
@@ -76,20 +90,44 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   }
   const Vec3f e = box.valid() ? box.extents() : Vec3f(0.0f);
   const double volume = double(e.x) * double(e.y) * double(e.z);
-  const float diagonal = 2.0f * sceneBounds.boundingRadius();
   const double area = std::cbrt(volume * volume);  // V^(2/3)
+  const double h = BeamSettings::TargetPairHits;
   double r = 0.0;
-  if (volumeEstimator == VolumeEstimator::Points)
-    r = volume > 0.0 && !beams.empty() ? std::sqrt(TargetPairHits * area / (Pi * double(beams.size()))) : 0.0;
+  if (points)
+    r = volume > 0.0 && !beams.empty() ? std::sqrt(h * area / (Pi * double(beams.size()))) : 0.0;
   else
-    r = volume > 0.0 && length > 0.0 ? 2.0 * TargetPairHits * area / (Pi * length) : 0.0;
-  // Beams in a plane or on a line (no volume), or none: the scene's scale.
+    r = volume > 0.0 && length > 0.0 ? 2.0 * h * area / (Pi * length) : 0.0;
+  const float diagonal = 2.0f * sceneBounds.boundingRadius();
   if (!(r > 0.0) || !std::isfinite(r)) r = BeamRadiusFraction * diagonal;
-  // Never wider than the old fixed default: few photons must not blur the medium away.
   if (diagonal > 0.0f && std::isfinite(diagonal)) r = std::min(r, double(MaxBeamRadiusFraction * diagonal));
-  s.radius = float(r);
+  return r;
+}
+
+}  // namespace
+
+BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
+                                              const TimeGrid& grid, const BoundingBox3f& sceneBounds,
+                                              DerivedRadius* chosen) const {
+  BeamSettings s = *this;
+  if (s.radius > 0.0f) return s;
+  DerivedRadius d;
+  const bool points = volumeEstimator == VolumeEstimator::Points;
+  d.density = probes.empty() ? spreadRadius(beams, points, sceneBounds) : densityRadius(beams, probes, TargetPairHits);
+  // The time bound at the largest index a pair's OPL can run at.
+  double eta = 0.0;
+  for (const ProbeSegment& p : probes) eta = std::max(eta, double(p.segment.eta));
+  for (const Beam& b : beams) eta = std::max(eta, double(b.eta));
+  d.time = timeRadius(grid, eta);
+  d.boundary = boundaryRadius(probes);
+  d.radius = std::min({d.density, d.time, d.boundary});
+  // Nothing bounds it (a steady film, beams too few to reach the target, no
+  // probes' boundary): the beams' spread.
+  if (!std::isfinite(d.radius)) d.radius = std::min(spreadRadius(beams, points, sceneBounds), d.radius);
+  if (chosen) *chosen = d;
+  s.radius = float(d.radius);
   if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
-    throw Error(location, "transient_beams: cannot derive a beam radius (no beams and no scene extent); give \"radius\"");
+    throw Error(location,
+                "transient_beams: cannot derive a beam radius (no beams and no scene extent); give \"radius\"");
   return s;
 }
 

@@ -11,12 +11,14 @@
 #include <femto/math/bbox.h>
 #include <femto/render/path_depth.h>
 #include <transient_beams/beam.h>
+#include <transient_beams/radius_rule.h>
 
 namespace femto::beams {
 
 /// Which photon segments in media become beams.
 enum class BeamStore {
-  Single,  // only photons that have not scattered yet (straight from the emitter, through specular chains): single scattering
+  Single,  // only photons that have not scattered yet (straight from the emitter, through specular chains): single
+           // scattering
   All,     // every segment: all orders of scattering in media
 };
 
@@ -30,50 +32,59 @@ enum class VolumeEstimator {
   Points,
 };
 
+/// The derived beam radius and the three bounds it is the smallest of
+/// (+Infinity: no bound; BeamSettings::withBeamRadiusFrom).
+struct DerivedRadius {
+  double density = 0.0, time = 0.0, boundary = 0.0, radius = 0.0;
+};
+
 /// max_depth (the longest camera + photon path in segments, -1: no limit),
 /// rr_depth (photon segments before Russian roulette may end a photon) and
 /// depthAllowed() come from PathDepthSettings, read with path's rule.
 struct BeamSettings : PathDepthSettings {
   int passes = 1;
-  int64_t photonCount = 100000;  // photons traced per pass (all leave surface photons)
+  int64_t photonCount = 100000;     // photons traced per pass (all leave surface photons)
   int64_t beamPhotonCount = 10000;  // how many of them (the first ones) leave beams; 0: all
-  float radius = 0.0f;           // beam kernel radius of pass 0 (0: derived from the scene size)
-  float surfaceRadius = 0.0f;    // surface photon kernel radius of pass 0 (0: derived)
-  float gatherFraction = 1.0f;   // probability that a camera segment in a medium gathers beams (weight 1/it)
-  float alpha = 0.7f;            // progressive radius reduction, in (0, 1]
+  float radius = 0.0f;              // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
+  float surfaceRadius = 0.0f;       // surface photon kernel radius of pass 0 (0: derived)
+  float gatherFraction = 1.0f;      // probability that a camera segment in a medium gathers beams (weight 1/it)
+  float alpha = 0.7f;               // progressive radius reduction, in (0, 1]
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
-  bool observerTime = true;      // the camera segment counts toward the OPL
-  bool hideEmitters = false;     // emitters seen directly appear black
-  SourceLocation location;       // the <integrator> element, for errors found at render time
+  bool observerTime = true;   // the camera segment counts toward the OPL
+  bool hideEmitters = false;  // emitters seen directly appear black
+  SourceLocation location;    // the <integrator> element, for errors found at render time
 
   /// Read and validate every parameter (unknown ones are the loader's business).
   static BeamSettings parse(const Properties& props);
 
   /// Fill in the surface radius if not given, as a fraction of the scene's
-  /// bounding-box diagonal; an error naming the integrator when the scene has
-  /// no extent. The beam radius, if not given, stays 0 until
+  /// bounding-box diagonal (a scene without shapes has no surfaces to gather
+  /// on: any radius); an error naming the integrator when the scene's extent
+  /// is not finite. The beam radius, if not given, stays 0 until
   /// withBeamRadiusFrom() sees the first pass's beams.
   BeamSettings resolved(const BoundingBox3f& sceneBounds) const;
 
-  /// If no beam radius is given, derive the first pass's from its beams
-  /// (total length L, bounding box volume V): a camera segment of length
-  /// V^(1/3) through beams spread evenly and isotropically over V passes
-  /// within r of about L V^(1/3) 2r (pi/4) / V of them (the mean |sin| of
-  /// isotropic directions is pi/4), so
-  ///   r = 2 TargetPairHits V^(2/3) / (pi L)
-  /// gives each such segment about TargetPairHits pairs: the estimate's
-  /// cost per camera segment stays bounded whatever the photon count, and
-  /// the radius shrinks as photons are added. Photon points (P of them,
-  /// zero-length beams) instead meet a segment in its cylinder of volume
-  /// pi r^2 V^(1/3), P pi r^2 V^(1/3) / V of them, so
-  ///   r = sqrt(TargetPairHits V^(2/3) / (pi P)).
-  /// Falls back to a fraction of `sceneBounds`' diagonal when the beams span
-  /// no volume. Deterministic: the beams are the same for a given seed on any
-  /// thread count.
-  BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const BoundingBox3f& sceneBounds) const;
+  /// If no beam radius is given, derive the first pass's (radius_rule.h,
+  /// docs/photon-beams.md, "Derived beam radius"): the smallest of
+  ///  * the density radius: probe segments (camera rays through the film in
+  ///    media, radius_probe.h) meet TargetPairHits of `beams` on average,
+  ///    so a gather's cost stays bounded whatever the photon count;
+  ///  * the time radius: a pair's OPL footprint stays within half a bin of
+  ///    `grid` (none for steady films);
+  ///  * the boundary radius: the kernel's loss where beams end stays below
+  ///    BoundaryBiasTarget of a camera segment's estimate.
+  /// Without probes (no medium seen straight from the camera) the density
+  /// radius falls back to the beams' spread (total length L in a bounding
+  /// box of volume V: r = 2 H V^(2/3) / (pi L), photon points
+  /// r = sqrt(H V^(2/3) / (pi P)); at most 1 % of the scene's diagonal).
+  /// Deterministic: the beams are the same for a given seed on any thread
+  /// count, the probes fixed. `chosen`, if given, receives the three radii.
+  BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
+                                  const TimeGrid& grid, const BoundingBox3f& sceneBounds,
+                                  DerivedRadius* chosen = nullptr) const;
 
-  /// Pairs per camera segment the derived beam radius aims at: enough that
+  /// Pairs per camera segment the density radius aims at: enough that
   /// a gather is worth its query (a camera segment's BVH traversal costs
   /// about as much as tens of pair estimates), few enough that the kernel
   /// stays narrow (docs/BENCHMARKS.md, "transient_beams cost").

@@ -12,6 +12,7 @@
 #include <femto/transport/optical_path.h>
 #include <femto/transport/transient_emission.h>
 #include <femto/transport/volumetric.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
 #include <transient_beams/ray_point.h>
@@ -32,8 +33,8 @@ constexpr float MinPhotonCosine = 1e-4f;
 struct CameraTracer::Path : OpticalPath {
   bool cameraSegment = true;  // no (specular) scattering vertex yet
   Color3f throughput{1.0f};
-  int segments = 0;           // camera segments completed before the current one
-  ScatterOrigin prev;         // camera rays and specular bounces (delta): emission found by a ray counts fully
+  int segments = 0;    // camera segments completed before the current one
+  ScatterOrigin prev;  // camera rays and specular bounces (delta): emission found by a ray counts fully
 };
 
 void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) {
@@ -67,7 +68,12 @@ void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sam
 
 bool CameraTracer::crossMedium(const Scene& scene, Path& s, bool hit, const SurfaceInteraction& si, Sampler& sampler,
                                RadianceRecorder& recorder) {
-  float tMax = hit ? distance(s.vertex, si.p) : unboundedSegmentLength(*s.medium, s.opl, recorder.horizon());
+  // An unbounded segment ends where its OPL passes the horizon, unless it
+  // adds no OPL (observer time off): then light scattered far along it still
+  // arrives in time, and only the transmittance bounds it.
+  const bool counted = segmentCounts(settings_.observerTime, s.cameraSegment);
+  float tMax = hit ? distance(s.vertex, si.p)
+                   : unboundedSegmentLength(*s.medium, s.opl, counted ? recorder.horizon() : Infinity);
   if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, sampler, recorder);
   if (!hit) return false;  // escaping through a medium: attenuated to nothing
   s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
@@ -147,6 +153,8 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   // radiance estimate, ray_point.h): the same estimate once the pair's
   // geometry is known, T_beam aside (a point's power already holds it).
   const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
+  // The beams here were ended by this medium's roulette (beam_roulette.h).
+  const BeamRoulette roulette = BeamRoulette::of(medium);
   for (uint32_t index : scratch_) {
     const Beam& beam = beams[index];
     // Beams of another medium overlapping this one (nested media) do not scatter here.
@@ -164,7 +172,9 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
                     float(double(hit.kernel) * invPhotons * gatherWeight);
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler);
-    if (!points) value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler);
+    if (!points)
+      value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler) *
+               roulette.inverseSurvival(hit.tBeam);
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
     recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,

@@ -13,6 +13,7 @@
 #include <femto/render/scene.h>
 #include <femto/transport/optical_path.h>
 #include <femto/transport/volumetric.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/medium_extent.h>
 
 namespace femto::beams {
@@ -162,9 +163,16 @@ bool PhotonTracer::emit(Photon& ph, Sampler& sampler) const {
 
 MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceInteraction& si, bool store, Sampler& sampler,
                                        std::vector<Beam>& beams, Color3f& arriving) const {
+  // Long beams end by Russian roulette once their transmittance is low
+  // (beam_roulette.h); the camera side weights them by 1 / survival. Drawn
+  // whether or not the beam is stored, so that a photon's path does not
+  // depend on which of its segments leave beams.
+  const BeamRoulette roulette = BeamRoulette::of(*ph.medium);
+  const float rouletteLength = roulette.active() ? roulette.sampleLength(sampler.next1D()) : Infinity;
   if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
     // From the exact vertex, so the beam's OPL and geometry agree.
     float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
+    length = std::min(length, rouletteLength);
     if (length > 0.0f && std::isfinite(length))
       beams.push_back(
           Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium});

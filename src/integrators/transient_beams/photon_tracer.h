@@ -8,7 +8,9 @@
 //
 // * Every photon segment inside a medium becomes a Beam reaching to the next
 //   surface ("long" beam: the photon itself may scatter earlier, where its
-//   next segment starts; the camera side weights a beam by its transmittance).
+//   next segment starts; the camera side weights a beam by its transmittance),
+//   cut short by Russian roulette once that transmittance is low
+//   (beam_roulette.h: unbiased, the camera side divides by the survival).
 //   BeamStore::Single keeps only the beams of photons that have not scattered
 //   yet (straight from the emitter or through mirrors and glass).
 //   With VolumeEstimator::Points photons leave photon points instead: a

@@ -22,6 +22,13 @@ constexpr float Perpendicular = 1e-12f;
 // of the slab-clipped segment.
 constexpr float ParallelSin2 = 1e-10f;
 
+/// Distance from ray.o + t w to the beam's start, |delta + t w| (delta = ray.o - b), in double.
+double startDistance(const Vec3f& delta, const Vec3f& w, float t) {
+  const double x = double(delta.x) + double(t) * w.x, y = double(delta.y) + double(t) * w.y,
+               z = double(delta.z) + double(t) * w.z;
+  return std::sqrt(x * x + y * y + z * z);
+}
+
 }  // namespace
 
 bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit,
@@ -93,13 +100,19 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
   hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 
-  // OPL is linear along the overlap: OPL(t) = eta_c t + eta_b s(t). The far
-  // end adds rate * length in double, so a stationary pair (rate 0) collapses
-  // exactly instead of through the cancellation of two large OPLs.
-  const double sBegin = std::clamp(double(s0) + double(tBegin) * cosTheta, 0.0, double(length));
-  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * sBegin;
-  const double rate = double(segment.eta) + double(beam.eta) * double(cosTheta);
-  const double oplB = oplA + rate * (double(tEnd) - double(tBegin));
+  // Causal OPL (docs/photon-beams.md, "Causality"): light at camera point
+  // x(t) came from the beam's start b, which it left at beam.opl, and
+  // travelled at least |x(t) - b| in the medium (eta_b): g(t) = eta_c t +
+  // eta_b |x(t) - b|. Away from the start |x(t) - b| = s(t) + gap^2 / (2 s):
+  // the projection's OPL eta_c t + eta_b s(t) up to second order; near the
+  // start (the kernel straddling the light cone) it keeps every estimate
+  // after the light could arrive. g is convex in t, so the straight line
+  // between its values at the overlap's ends lies above it: the deposit,
+  // uniform over [g(tBegin), g(tEnd)], is that line, never earlier than g,
+  // and by the triangle inequality never before the earliest path
+  // b -> x(t) -> ray.o.
+  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * startDistance(delta, w, tBegin);
+  const double oplB = double(segment.eta) * tEnd + double(beam.eta) * startDistance(delta, w, tEnd);
   hit.oplBegin = std::min(oplA, oplB);
   hit.oplEnd = std::max(oplA, oplB);
 

@@ -25,7 +25,12 @@ bool rayPointIntersect(const CameraSegment& segment, const Beam& point, float ra
   hit.tRay = hit.tRayBegin = hit.tRayEnd = t;
   hit.tBeam = 0.0f;
   hit.kernel = InvPi / r2;
-  hit.oplBegin = hit.oplEnd = double(segment.eta) * double(t);
+  // The gap from the photon to ray(t) is crossed at the photon's medium's
+  // eta: the instant is then the OPL of a real path photon -> ray(t) ->
+  // ray.o, never earlier than light could arrive (docs/photon-beams.md,
+  // "Causality").
+  const double gap = std::sqrt(double(dot(m, m)));
+  hit.oplBegin = hit.oplEnd = double(segment.eta) * double(t) + double(point.eta) * gap;
   // Last line of defence: nothing non-finite reaches the film.
   return hit.kernel > 0.0f && std::isfinite(hit.kernel) && std::isfinite(hit.oplBegin);
 }

@@ -26,10 +26,10 @@
 // own free flight sampled it).
 //
 // Time: the disc kernel has no extent along the camera ray, so a pair is one
-// instant: the photon's OPL plus the camera OPL to the projection t_i
-// (oplBegin = oplEnd = segment.eta t_i). The path across the gap from ray(t_i)
-// to x_i (< r) is not counted, as the beam estimate does not count it: the
-// time blur this leaves is below r eta and vanishes as the radius shrinks.
+// instant: the photon's OPL, the gap from x_i to ray(t_i) (< r, crossed at
+// the photon medium's eta) and the camera OPL to t_i (oplBegin = oplEnd =
+// segment.eta t_i + point.eta gap): the OPL of a real path, so never before
+// light could arrive; the time blur is below r eta and vanishes with the radius.
 //
 // Hard cases (tests/unit/integrators/transient_beams/test_ray_point.cpp): a photon exactly on the ray
 // (distance 0), at either end of the segment (t_i = 0 or tMax, kept: the
@@ -44,7 +44,7 @@ namespace femto::beams {
 /// lie within `radius` of `segment`, its projection on [0, tMax]? On true
 /// `hit` holds the estimate's geometry in the ray x beam form: tRay the
 /// projection, tRayBegin = tRayEnd = tRay, tBeam = 0, kernel 1/(pi r^2),
-/// oplBegin = oplEnd = segment.eta tRay; every field finite. Non-finite or
+/// oplBegin = oplEnd = segment.eta tRay + point.eta gap; every field finite. Non-finite or
 /// degenerate input (radius not > 0, tMax not > 0, NaN anywhere) gives false.
 bool rayPointIntersect(const CameraSegment& segment, const Beam& point, float radius, RayBeamHit& hit);
 

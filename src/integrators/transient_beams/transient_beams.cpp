@@ -24,8 +24,9 @@
 // | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all          | -      |
 // | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
 // |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
-// | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: from   | scene  |
-// |                |         |                | pass 0's beams, ~25 pairs per segment (beam_settings.h)   |        |
+// | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: the    | scene  |
+// |                |         |                | smallest of ~25 pass-0 beams per camera segment, half a   |        |
+// |                |         |                | bin's OPL footprint, 0.25 % boundary loss (radius_rule.h) |        |
 // | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
 // | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
@@ -47,16 +48,26 @@
 
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
+#include <femto/film/transient_film.h>
+#include <femto/film/transient_render.h>
 #include <femto/loop/render_loop.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
-#include <femto/film/transient_render.h>
 #include <femto/render/transient_integrator.h>
 #include <transient_beams/beam_pass.h>
 #include <transient_beams/beam_settings.h>
+#include <transient_beams/radius_probe.h>
 
 namespace femto {
 namespace {
+
+/// The film's time axis (bins == 0 for steady films): the derived beam
+/// radius keeps a pair's OPL footprint within a fraction of its bins.
+TimeGrid filmTimeGrid(const Scene& scene) {
+  const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
+  return film ? film->timeGrid() : TimeGrid{};
+}
+
 /// Mixed into a pass's seed for its photons, so they draw from other streams than its pixels.
 constexpr uint64_t PhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
 
@@ -66,12 +77,16 @@ constexpr uint64_t PhotonSeedSalt = 0x70686f746f6e73ULL;  // "photons"
 struct PassTotals {
   int passes = 0;
   uint64_t beams = 0, surfacePhotons = 0, photons = 0;
+  uint64_t pieces = 0;      // beam map pieces (beam_map.h): how finely the beams were cut for tight boxes
+  double beamLength = 0.0;  // summed beam length (after the roulette, beam_roulette.h)
   double traceSeconds = 0.0, buildSeconds = 0.0;
   beams::CameraStatistics camera;
 
   void add(const beams::BeamPass& pass) {
     ++passes;
     beams += pass.beamMap().beams().size();
+    pieces += pass.beamMap().pieceCount();
+    for (const beams::Beam& b : pass.beamMap().beams()) beamLength += b.length;
     surfacePhotons += pass.photonMap().size();
     photons += pass.maps().photonCount;
     traceSeconds += pass.traceSeconds();
@@ -86,8 +101,10 @@ struct PassTotals {
     const double cameraSeconds = std::max(seconds - traceSeconds - buildSeconds, 1e-9);
     const double rays = double(std::max<uint64_t>(camera.cameraRays, 1));
     const double segments = double(std::max<uint64_t>(camera.segments, 1));
+    const double beamCount = double(std::max<uint64_t>(beams, 1));
     return str("transient_beams: ", passes, " passes, ", photons, " photons, ", beams, " beams, ", surfacePhotons,
-               " surface photons; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
+               " surface photons; beams: mean length ", beamLength / beamCount, ", ", double(pieces) / beamCount,
+               " map pieces each; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
                cameraSeconds, " s; ", camera.cameraRays, " camera rays, ", camera.segments, " beam queries (",
                double(camera.candidates) / segments, " candidates and ", double(camera.pairHits) / segments,
                " pair hits each), ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
@@ -105,8 +122,9 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
   /// transient_beams renders in passes (render()): a camera sample needs a
   /// pass's photon maps, so it cannot be nested in another integrator.
   void sample(const Scene&, const Ray&, Sampler&, RadianceRecorder&) const override {
-    throw Error(settings_.location, "transient_beams renders whole passes (photon maps first, then the film) and "
-                                    "cannot be sampled one camera ray at a time (e.g. nested in another integrator)");
+    throw Error(settings_.location,
+                "transient_beams renders whole passes (photon maps first, then the film) and "
+                "cannot be sampled one camera ray at a time (e.g. nested in another integrator)");
   }
 
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
@@ -126,7 +144,13 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
       const uint64_t seed = mixSeed(passSeed(options.seed, pass), PhotonSeedSalt);
       auto trace = [&] {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
-        if (pass == 0) settings = settings.withBeamRadiusFrom(traced.beams, scene.bbox());
+        if (pass == 0 && !(settings.radius > 0.0f)) {
+          beams::DerivedRadius derived;
+          settings = settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon, settings.observerTime),
+                                                 filmTimeGrid(scene), scene.bbox(), &derived);
+          logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
+                  derived.time, ", boundary ", derived.boundary, ")");
+        }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
       };
       // Photons are traced with the thread count the user asked for.
@@ -149,10 +173,10 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
   std::string toString() const override {
     return str("TransientBeamsIntegrator[passes=", settings_.passes, ", photon_count=", settings_.photonCount,
                ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius, ", alpha=", settings_.alpha,
-               ", max_depth=", settings_.maxDepth, ", store=",
-               settings_.store == beams::BeamStore::All ? "all" : "single", ", volume_estimator=",
-               settings_.volumeEstimator == beams::VolumeEstimator::Points ? "points" : "beams", ", observer_time=",
-               settings_.observerTime ? "true" : "false", "]");
+               ", max_depth=", settings_.maxDepth,
+               ", store=", settings_.store == beams::BeamStore::All ? "all" : "single",
+               ", volume_estimator=", settings_.volumeEstimator == beams::VolumeEstimator::Points ? "points" : "beams",
+               ", observer_time=", settings_.observerTime ? "true" : "false", "]");
   }
 
  private:

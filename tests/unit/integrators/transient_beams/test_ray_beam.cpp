@@ -25,6 +25,9 @@ using test::marchOverlap;
 using test::Pair;
 using test::PairSpec;
 using test::Rotation;
+using test::dotD;
+using test::toD;
+using test::Vec3d;
 
 constexpr double DoublePi = 3.14159265358979323846;
 
@@ -279,17 +282,28 @@ TEST(RayBeam, OplIntervalMatchesTheMarchedExtremes) {
     if (!rayBeamIntersect(p.segment, p.beam, r, h) || ref.length < 10 * ref.step) continue;
     ++checked;
     // OPL changes by at most (eta_c + eta_b) per unit t: one step each end.
+    // The interval runs between the causal OPL's values at the overlap's
+    // ends, which is never below its minimum (causality).
     double tol = (s.etaCamera + s.etaBeam) * ref.step + 1e-5;
-    EXPECT_NEAR(h.oplBegin, ref.oplMin, tol) << i;
-    EXPECT_NEAR(h.oplEnd, ref.oplMax, tol) << i;
-    // And the rate along the overlap is eta_c + eta_b cos(theta).
-    double rate = std::abs(s.etaCamera + s.etaBeam * std::cos(s.theta));
-    EXPECT_NEAR(h.oplEnd - h.oplBegin, rate * (h.tRayEnd - h.tRayBegin), 1e-5) << i;
+    EXPECT_NEAR(h.oplBegin, std::min(ref.causalFirst, ref.causalLast), tol) << i;
+    EXPECT_NEAR(h.oplEnd, std::max(ref.causalFirst, ref.causalLast), tol) << i;
+    EXPECT_GE(h.oplBegin, ref.causalMin - tol) << i;
+    // Away from the beam's start that is the projection's OPL, eta_c t + eta_b s(t),
+    // up to eta_b gap^2 / (2 s) <= eta_b r^2 / (2 s).
+    if (s.sClosest > 0.5 && s.sClosest + 0.5 < s.length) {
+      EXPECT_NEAR(h.oplBegin, ref.oplMin, tol + s.etaBeam * r * r / 0.1) << i;
+      EXPECT_NEAR(h.oplEnd, ref.oplMax, tol + s.etaBeam * r * r / 0.1) << i;
+    }
   }
   EXPECT_GT(checked, 20);
 }
 
-TEST(RayBeam, AntiParallelIntervalCollapses) {
+TEST(RayBeam, AntiParallelIntervalCollapsesToTheLateralGap) {
+  // The beam's light travels toward the camera along the ray: the path
+  // length along the beam and back along the ray is stationary, and what is
+  // left of the interval is the lateral gap d: light leaving the beam's far
+  // end (s = 2) reaches the ray after sqrt(2^2 + d^2), light from its start
+  // after d, so the interval is eta [sqrt(4 + d^2), 2 + d] (width ~ eta d <= eta r).
   PCG32 rng(13, 1);
   const float r = 0.05f;
   for (int i = 0; i < 50; ++i) {
@@ -300,24 +314,24 @@ TEST(RayBeam, AntiParallelIntervalCollapses) {
     Pair p = makePair(s, Rotation(rng), {3, -1, 2});
     RayBeamHit h = mustHit(p, r);
     EXPECT_GT(h.tRayEnd - h.tRayBegin, 1.9);
+    const double d = std::abs(s.offset);
     // Rounding of the rotated unit vectors leaves |1 + cos| ~ 1e-7.
-    EXPECT_LE(h.oplEnd - h.oplBegin, 1e-6) << i;
-    // Stationary path length: the light reaching the camera along the beam
-    // left the beam's start at OPL 0 and travels ray.o's distance to it.
-    double sAtCamera = 1.0 + 1.0;  // beam start is tClosest + sClosest from the camera
-    EXPECT_NEAR(h.oplBegin, 1.33 * sAtCamera, 2e-5) << i;
+    EXPECT_NEAR(h.oplBegin, 1.33 * std::sqrt(4.0 + d * d), 2e-5) << i;
+    EXPECT_NEAR(h.oplEnd, 1.33 * (2.0 + d), 2e-5) << i;
+    EXPECT_LE(h.oplEnd - h.oplBegin, 1.33 * r) << i;
   }
-  // Axis-aligned, exactly anti-parallel: exactly one instant.
+  // Axis-aligned, exactly anti-parallel, gap 0.01.
   Pair p;
   p.beam.origin = {0, 0.01f, 0}, p.beam.direction = {1, 0, 0}, p.beam.length = 2;
   p.segment.ray = Ray({3, 0, 0}, {-1, 0, 0}), p.segment.tMax = 5;
   RayBeamHit h = mustHit(p, 0.05f);
-  EXPECT_EQ(h.oplBegin, h.oplEnd);
-  EXPECT_EQ(h.oplBegin, 3.0);
-  // Different indices: no longer stationary.
+  const double gap = double(0.01f);
+  EXPECT_NEAR(h.oplBegin, 1.0 + std::sqrt(4.0 + gap * gap), 1e-9);
+  EXPECT_NEAR(h.oplEnd, 3.0 + gap, 1e-9);
+  // Different indices: no longer stationary, the camera part grows by 0.5 per unit.
   p.segment.eta = 1.5f;
   h = mustHit(p, 0.05f);
-  EXPECT_NEAR(h.oplEnd - h.oplBegin, 0.5 * 2.0, 1e-6);
+  EXPECT_NEAR(h.oplEnd - h.oplBegin, (4.5 + gap) - (1.5 + std::sqrt(4.0 + gap * gap)), 1e-6);
 }
 
 TEST(RayBeam, ParallelPairsSpreadWidest) {
@@ -332,12 +346,82 @@ TEST(RayBeam, ParallelPairsSpreadWidest) {
     s.theta = std::max(theta, 0.0), s.sClosest = 2, s.tClosest = 2, s.length = 4, s.tMax = 4;
     Pair p = makePair(s, rot);
     RayBeamHit h = mustHit(p, r);
-    double rate = (h.oplEnd - h.oplBegin) / (h.tRayEnd - h.tRayBegin);
-    EXPECT_NEAR(rate, 1 + std::cos(s.theta), 1e-4) << theta;
+    double chord = h.tRayEnd - h.tRayBegin;
+    double rate = (h.oplEnd - h.oplBegin) / chord;
+    // The causal OPL's ends differ from the projection's by gap^2 / (2 s)
+    // <= r^2 / 2 each (s >= 1 at the overlap's ends here, gap <= r).
+    EXPECT_NEAR(rate, 1 + std::cos(s.theta), 1e-4 + r * r / chord) << theta;
     EXPECT_GE(rate, previousRate - 1e-6) << theta;
     previousRate = rate;
   }
   EXPECT_NEAR(previousRate, 2.0, 1e-5);
+}
+
+// --- Causality -------------------------------------------------------------
+
+/// Smallest distance from `q` to the points ray.o + t ray.d, t in [t0, t1].
+double distanceToPiece(const CameraSegment& seg, double t0, double t1, const Point3f& q) {
+  Vec3d o = toD(seg.ray.o), d = toD(seg.ray.d), rel = toD(q) - o;
+  double t = std::clamp(dotD(rel, d), t0, t1);
+  Vec3d gap = rel - d * t;
+  return std::sqrt(dotD(gap, gap));
+}
+
+// No estimate arrives before light could: a beam leaving its start b at OPL
+// 0, light reaching camera point x(t) no earlier than eta |x(t) - b|, so
+// with observer time the camera at ray.o no earlier than eta |ray.o - b|
+// (the light cone of b), and without it (eta_c = 0) no pair before
+// eta min |x(t) - b| over its overlap. Hard cases, 20000 pairs each: the
+// camera ray grazing the kernel cylinder (|offset| -> r), parallel and
+// anti-parallel to the beam, and the kernel straddling the light cone (the
+// crossing within a few radii of the beam's start, the camera ray starting
+// inside the kernel beside it). Without the lateral path (the projection's
+// OPL eta_c t + eta_b s(t), the estimate before issue 14) the same pairs
+// arrive early: the test sees it.
+TEST(RayBeam, NoEstimateArrivesBeforeLightCould) {
+  PCG32 rng(31, 7);
+  const float r = 0.05f;
+  enum Case { Grazing, Parallel, AntiParallel, Straddling, Cases };
+  for (int c = 0; c < Cases; ++c) {
+    int hits = 0, earlyWithoutLateralPath = 0;
+    for (int i = 0; i < 20000; ++i) {
+      PairSpec s;
+      s.length = 0.2 + 2 * rng.nextDouble();
+      s.tMax = 0.2 + 3 * rng.nextDouble();
+      s.theta = DoublePi * rng.nextDouble();
+      s.sClosest = s.length * rng.nextDouble();
+      s.tClosest = s.tMax * rng.nextDouble();
+      s.offset = r * (2 * rng.nextDouble() - 1);
+      if (c == Grazing) s.offset = r * (1 - 1e-3 * rng.nextDouble()) * (rng.nextDouble() < 0.5 ? -1 : 1);
+      if (c == Parallel) s.theta = 1e-4 * rng.nextDouble();
+      if (c == AntiParallel) s.theta = DoublePi - 1e-4 * rng.nextDouble();
+      if (c == Straddling) s.sClosest = 3 * r * rng.nextDouble(), s.tClosest = 3 * r * rng.nextDouble();
+      const bool observerTime = i % 2 == 0;
+      const float eta = 1.0f + 0.5f * rng.nextFloat();
+      s.etaBeam = eta, s.etaCamera = observerTime ? eta : 0.0f;
+      Pair p = makePair(s, Rotation(rng), {float(rng.nextDouble()), 1, -2});
+      RayBeamHit h;
+      if (!rayBeamIntersect(p.segment, p.beam, r, h)) continue;
+      ++hits;
+      const double bound = observerTime ? eta * distance(p.segment.ray.o, p.beam.origin)
+                                        : eta * distanceToPiece(p.segment, h.tRayBegin, h.tRayEnd, p.beam.origin);
+      const double tol = 1e-5 * (1 + bound);
+      EXPECT_GE(h.oplBegin, bound - tol) << "case " << c << " pair " << i;
+      // The projection's OPL at the overlap's ends.
+      double projection = 1e30;
+      for (double t : {double(h.tRayBegin), double(h.tRayEnd)}) {
+        Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
+        projection = std::min(projection, double(p.segment.eta) * t +
+                                              double(eta) * std::clamp(dotD(x - toD(p.beam.origin), toD(p.beam.direction)),
+                                                                       0.0, double(p.beam.length)));
+      }
+      earlyWithoutLateralPath += projection < bound - tol;
+    }
+    std::printf("case %d: %d hits, %d would arrive early without the lateral path\n", c, hits,
+                earlyWithoutLateralPath);
+    EXPECT_GT(hits, 1000) << "case " << c;
+    EXPECT_GT(earlyWithoutLateralPath, 0) << "case " << c << ": the check could not fail";
+  }
 }
 
 // --- Tangent, zero-length and degenerate ---------------------------------

@@ -65,7 +65,8 @@ std::vector<double> estimate(const TimeDeposit& dep, RayBeamKernel kernel, std::
 }
 
 /// Pencil average of a marched density: each step inside the kernel region
-/// carries its mass, spread over the OPLs the step covers. `oneD` false: the
+/// carries its mass, spread over the OPLs the step covers (camera OPL + beam
+/// OPL: the causal OPL from the beam's start, ray_beam.cpp). `oneD` false: the
 /// blurred beam, 1/(pi r^2) per unit length. `oneD` true: the 1D kernel's
 /// definition, each pass carrying 1/(2 r sin(theta)) spread evenly over its
 /// (marched) chord.
@@ -89,7 +90,8 @@ std::vector<double> marchedReference(const TimeDeposit& dep, double step, bool o
       for (int k = 0; k < steps; ++k) {
         double t = tAt(k), sBeam = 0;
         if (!test::insideKernel(p, Pencil::r, t, &sBeam)) continue;
-        double opl = t + sBeam;  // eta = 1 on both
+        (void)sBeam;
+        double opl = test::causalOpl(p, t);  // eta = 1 on both
         dep.interval(opl - 0.5 * rate * step, opl + 0.5 * rate * step, s);
         accumulate(s, density * step / Pencil::rays(), bins);
       }
@@ -98,11 +100,20 @@ std::vector<double> marchedReference(const TimeDeposit& dep, double step, bool o
   return bins;
 }
 
+/// The causal OPL eta_c t + eta_b |x(t) - b| (ray_beam.cpp) is convex in t;
+/// a pair deposits uniformly between its values at the overlap's ends, the
+/// straight line above it, at most Curvature above it (|x - b| exceeds the
+/// projection s by gap^2 / (2 s) <= r^2 / (2 s), s >= 0.4 on the pencil).
+constexpr double Curvature = Pencil::r * Pencil::r / (2 * 0.4);
+
 /// Per-bin tolerance of a march with `step`: at most one step's mass
 /// (`endMass`) misplaced at each end of each ray's overlap, in the bins
-/// within one step's OPL of that end.
+/// within one step's OPL of that end; and, for the deposit's straight line
+/// against the march's convex OPL, each ray's mass (at most `rayMass`) within
+/// Curvature of a bin edge inside its interval, a share 2 Curvature / (b - a)
+/// per bin it touches.
 std::vector<double> marchTolerance(const TimeGrid& g, const std::vector<std::pair<double, double>>& ends,
-                                   double step, double endMass) {
+                                   double step, double endMass, double rayMass) {
   std::vector<double> tol(size_t(g.bins), 1e-9);
   const double slack = 2.0 * step;  // OPL rate <= 2
   for (auto [a, b] : ends) {
@@ -111,6 +122,10 @@ std::vector<double> marchTolerance(const TimeGrid& g, const std::vector<std::pai
       int hi = int(std::floor((e + slack - g.start) / g.binWidth));
       for (int k = std::max(lo, 0); k <= std::min(hi, g.bins - 1); ++k) tol[size_t(k)] += endMass;
     }
+    int lo = int(std::floor((a - Curvature - g.start) / g.binWidth));
+    int hi = int(std::floor((b + Curvature - g.start) / g.binWidth));
+    for (int k = std::max(lo, 0); k <= std::min(hi, g.bins - 1); ++k)
+      tol[size_t(k)] += rayMass * std::min(1.0, 2 * Curvature / std::max(b - a, 1e-12));
   }
   return tol;
 }
@@ -130,7 +145,8 @@ TEST(RayBeamTransient, CylinderKernelIsExactPerBinAtFineBins) {
   const double step = 2e-4;
   std::vector<double> ref = marchedReference(dep, step);
   std::vector<double> tol =
-      marchTolerance(dep.grid(), ends, step, step / (DoublePi * Pencil::r * Pencil::r) / Pencil::rays());
+      marchTolerance(dep.grid(), ends, step, step / (DoublePi * Pencil::r * Pencil::r) / Pencil::rays(),
+                     2 * Pencil::r / std::sin(Pencil::theta) / (DoublePi * Pencil::r * Pencil::r) / Pencil::rays());
   double total = 0, totalRef = 0;
   int nonEmpty = 0;
   for (size_t k = 0; k < est.size(); ++k) {
@@ -156,7 +172,8 @@ TEST(RayBeamTransient, OneDKernelSpreadsEachPassOverItsChord) {
   double minChord = 1e30;
   for (auto [a, b] : ends) minChord = std::min(minChord, (b - a) / (1 + std::cos(Pencil::theta)));
   minChord = std::max(minChord, 4 * step);
-  std::vector<double> tol = marchTolerance(dep.grid(), ends, step, kernel1D * 2 * step / minChord / Pencil::rays());
+  std::vector<double> tol =
+      marchTolerance(dep.grid(), ends, step, kernel1D * 2 * step / minChord / Pencil::rays(), kernel1D / Pencil::rays());
   double total = 0, totalRef = 0;
   for (size_t k = 0; k < est.size(); ++k) {
     // Inside a chord the marched density is off by (marched/true chord - 1) <= 2 steps / chord.

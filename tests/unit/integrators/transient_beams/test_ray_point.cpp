@@ -61,7 +61,8 @@ TEST(RayPoint, GenericPairIsTheDiscKernelAtTheProjection) {
       ASSERT_TRUE(rayPointIntersect(s, pointAt(o + d * t + side * offset), r, h)) << t << " " << offset;
       expectContract(s, h, r);
       EXPECT_NEAR(h.tRay, t, 1e-5);
-      EXPECT_NEAR(h.oplBegin, double(eta) * t, 1e-5);
+      // The camera OPL to the projection plus the gap to the photon at its eta (1 here).
+      EXPECT_NEAR(h.oplBegin, double(eta) * t + std::abs(offset), 1e-5);
     }
   RayBeamHit h;
   EXPECT_FALSE(rayPointIntersect(s, pointAt(o + d * 2.0f + side * 0.0505f), r, h)) << "just outside the radius";
@@ -69,12 +70,16 @@ TEST(RayPoint, GenericPairIsTheDiscKernelAtTheProjection) {
   EXPECT_FALSE(rayPointIntersect(s, pointAt(o + d * 6.01f), r, h)) << "past the segment's end";
 }
 
-TEST(RayPoint, ObserverTimeOffGivesOplZero) {
+TEST(RayPoint, ObserverTimeOffCountsOnlyTheGap) {
+  // Observer time off: no camera OPL; the photon still crosses the gap to
+  // the ray (causality: light is not at ray(t) before it could get there).
   CameraSegment s = segmentOf(Point3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), 3.0f, 0.0f);
   RayBeamHit h;
-  ASSERT_TRUE(rayPointIntersect(s, pointAt(Point3f(0.01f, 0.0f, 2.0f)), 0.05f, h));
-  EXPECT_EQ(h.oplBegin, 0.0);
-  EXPECT_EQ(h.oplEnd, 0.0);
+  Beam photon = pointAt(Point3f(0.01f, 0.0f, 2.0f));
+  photon.eta = 1.5f;
+  ASSERT_TRUE(rayPointIntersect(s, photon, 0.05f, h));
+  EXPECT_NEAR(h.oplBegin, 1.5 * 0.01, 1e-7);
+  EXPECT_EQ(h.oplEnd, h.oplBegin);
 }
 
 TEST(RayPoint, PhotonExactlyOnTheRayOrAtASegmentEndIsAFiniteHit) {

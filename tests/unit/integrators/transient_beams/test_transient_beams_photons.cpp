@@ -222,29 +222,37 @@ TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
     b.power = Color3f(1.0f);
     if (b.length > 0.0f) beams.push_back(b);
   }
+  // Probes: 64 segments like a camera's in the medium; the density radius
+  // is their k-nearest distance, checked on 400 other segments.
+  std::vector<femto::beams::ProbeSegment> probes(64);
+  for (auto& p : probes) p.segment.ray = Ray(point(), direction()), p.segment.tMax = 2.0f;
   BeamSettings s = photonSettings(1000);
-  BeamSettings resolved = s.withBeamRadiusFrom(beams, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)));
-  ASSERT_GT(resolved.radius, 0.0f);
+  femto::beams::DerivedRadius derived;
+  BeamSettings resolved =
+      s.withBeamRadiusFrom(beams, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &derived);
+  ASSERT_GT(derived.density, 0.0);
+  EXPECT_EQ(resolved.radius, float(std::min({derived.density, derived.time, derived.boundary})));
+  EXPECT_FALSE(std::isfinite(derived.time)) << "a steady film does not bound it";
   double hits = 0.0;
   const int segments = 400;
   for (int i = 0; i < segments; ++i) {
     femto::beams::CameraSegment seg;
     seg.ray = Ray(point(), direction());
-    seg.tMax = 2.0f;  // the cube's side, V^(1/3); may leave the cube (fewer beams there)
+    seg.tMax = 2.0f;  // may leave the cube (fewer beams there), as the probes do
     femto::beams::RayBeamHit hit;
-    for (const Beam& b : beams) hits += femto::beams::rayBeamIntersect(seg, b, resolved.radius, hit) ? 1.0 : 0.0;
+    for (const Beam& b : beams) hits += femto::beams::rayBeamIntersect(seg, b, float(derived.density), hit) ? 1.0 : 0.0;
   }
   const double perSegment = hits / segments;
-  std::printf("derived radius %g: %.1f pairs per segment (target %g)\n", resolved.radius, perSegment,
+  std::printf("density radius %g: %.1f pairs per segment (target %g)\n", derived.density, perSegment,
               BeamSettings::TargetPairHits);
-  // Segments leaving the cube lose up to half their length: between 0.4x and 1.2x.
-  EXPECT_GT(perSegment, 0.4 * BeamSettings::TargetPairHits);
-  EXPECT_LT(perSegment, 1.2 * BeamSettings::TargetPairHits);
-  // A given radius is kept; no beams fall back to the scene's scale.
+  // 64 probes x 25 pairs: the count is known to ~ +-10 % (their spread of lengths inside the cube).
+  EXPECT_GT(perSegment, 0.7 * BeamSettings::TargetPairHits);
+  EXPECT_LT(perSegment, 1.3 * BeamSettings::TargetPairHits);
+  // A given radius is kept; no beams and no probes fall back to the scene's scale.
   s.radius = 0.125f;
-  EXPECT_EQ(s.withBeamRadiusFrom(beams, BoundingBox3f()).radius, 0.125f);
+  EXPECT_EQ(s.withBeamRadiusFrom(beams, probes, TimeGrid{}, BoundingBox3f()).radius, 0.125f);
   s.radius = 0.0f;
-  float fallback = s.withBeamRadiusFrom({}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f))).radius;
+  float fallback = s.withBeamRadiusFrom({}, {}, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f))).radius;
   EXPECT_GT(fallback, 0.0f);
   EXPECT_LT(fallback, 0.1f);
 }

@@ -1,0 +1,27 @@
+#pragma once
+// Probe segments for the derived beam radius (radius_rule.h): camera rays
+// through an even grid of film positions, followed straight through
+// index-matched boundaries (as camera paths are), cut into their pieces
+// inside media. They stand for the camera segments that will gather beams:
+// the density bound counts beams near them, the boundary bound takes their
+// mean length. Specular chains are not followed (a view of a medium only
+// through a mirror gives no probes; the rule then falls back, beam_settings.h).
+#include <vector>
+
+#include <transient_beams/radius_rule.h>
+
+namespace femto {
+class Scene;
+}
+
+namespace femto::beams {
+
+/// Probes through ProbeGrid x ProbeGrid film positions (pixel-cell centres of
+/// the crop window, aperture centre); unbounded pieces end as camera
+/// segments do (unboundedSegmentLength, with `horizon`; camera segments add
+/// no OPL without `observerTime`). Deterministic.
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime);
+
+constexpr int ProbeGrid = 8;
+
+}  // namespace femto::beams

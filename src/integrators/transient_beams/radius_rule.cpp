@@ -1,0 +1,91 @@
+// The derived beam radius's three bounds (radius_rule.h, docs/photon-beams.md).
+#include <transient_beams/radius_rule.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <femto/math/constants.h>
+
+namespace femto::beams {
+namespace {
+
+struct V3 {
+  double x, y, z;
+};
+V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 v3(const Vec3f& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Point3f& p1, const Vec3f& d1, float len1) {
+  // Closest points of two segments: minimise |r + u e0 - v e1|^2 over the
+  // unit square (u, v), clamping one parameter and re-solving the other.
+  const V3 e0 = v3(d0) * double(len0), e1 = v3(d1) * double(len1), r = v3(p0) - v3(p1);
+  const double a = dot(e0, e0), e = dot(e1, e1), f = dot(e1, r);
+  double u = 0.0, v = 0.0;
+  if (a > 0.0 || e > 0.0) {
+    if (!(a > 0.0)) {
+      v = std::clamp(f / e, 0.0, 1.0);
+    } else {
+      const double c = dot(e0, r);
+      if (!(e > 0.0)) {
+        u = std::clamp(-c / a, 0.0, 1.0);
+      } else {
+        const double b = dot(e0, e1), denom = a * e - b * b;
+        // Parallel segments (denominator at rounding level): any u; take 0.
+        u = denom > 1e-12 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+        v = (b * u + f) / e;
+        if (v < 0.0) {
+          v = 0.0, u = std::clamp(-c / a, 0.0, 1.0);
+        } else if (v > 1.0) {
+          v = 1.0, u = std::clamp((b - c) / a, 0.0, 1.0);
+        }
+      }
+    }
+  }
+  const V3 gap = r + e0 * u - e1 * v;
+  return std::sqrt(dot(gap, gap));
+}
+
+double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs) {
+  if (probes.empty() || beams.empty()) return Infinity;
+  // Every stride-th beam: each found one stands for `stride` beams.
+  const size_t budget = std::max<size_t>(1, MaxDistancePairs / probes.size());
+  const size_t stride = (beams.size() + budget - 1) / budget;
+  std::vector<double> distances;
+  distances.reserve(probes.size() * std::min(beams.size(), budget));
+  for (const ProbeSegment& p : probes)
+    for (size_t i = 0; i < beams.size(); i += stride) {
+      const Beam& b = beams[i];
+      if (b.medium != p.medium) continue;
+      distances.push_back(
+          segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction, b.length));
+    }
+  // Mean pairs per probe at radius r: #{distances < r} stride / probes.
+  const double needed = targetPairs * double(probes.size()) / double(stride);
+  const size_t k = size_t(std::ceil(needed));
+  if (k == 0 || k > distances.size()) return Infinity;
+  std::nth_element(distances.begin(), distances.begin() + ptrdiff_t(k - 1), distances.end());
+  return distances[k - 1];
+}
+
+double timeRadius(const TimeGrid& grid, double eta) {
+  if (!grid.isTransient() || !(grid.binWidth > 0.0) || !(eta > 0.0)) return Infinity;
+  // A pair crossing the beam's axis perpendicularly covers a chord 2r, OPL
+  // 2 eta r (ray_beam.h): at most TimeBinFraction of a bin.
+  return TimeBinFraction * grid.binWidth / (2.0 * eta);
+}
+
+double boundaryRadius(const std::vector<ProbeSegment>& probes) {
+  double length = 0.0;
+  for (const ProbeSegment& p : probes) length += double(p.segment.tMax);
+  if (probes.empty() || !(length > 0.0)) return Infinity;
+  const double mean = length / double(probes.size());
+  // Relative loss ~ BoundaryLossPerRadius r / mean: at most BoundaryBiasTarget.
+  return BoundaryBiasTarget * mean / BoundaryLossPerRadius;
+}
+
+}  // namespace femto::beams

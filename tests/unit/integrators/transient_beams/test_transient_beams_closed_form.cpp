@@ -1,0 +1,108 @@
+// transient_beams at its default settings (derived radius: radius_rule.h;
+// only max_depth = 2 for single scattering, and passes) against the closed
+// form of single scattering from a point light (single_scattering_line.h),
+// on an 8x8-pixel film: an unbounded medium and a sphere of medium seen
+// from outside, with and without observer time. The reference integrates
+// each pixel over 4x4 sub-rays of the sensor itself (the radiance is smooth:
+// the light is out of view).
+//
+// Tolerances: 5 standard errors of the runs' mean, plus the derived bias
+// bound: the boundary loss (radius_rule.h: the radius keeps it below
+// BoundaryBiasTarget of a segment's estimate; none in unbounded media),
+// and the time footprint of a pair (the time radius keeps a typical pair
+// within half a bin, plus its lateral path: at most half a fine bin's mass
+// on each side of an edge crosses it). Window sums are compared in total and
+// in four coarse bins; the first two fine bins end before the earliest
+// possible arrival and must be exactly empty.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <transient_beams/radius_rule.h>
+
+#include "media_scene_generator.h"
+#include "transient_agreement_util.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+std::string beamsIntegrator(const MediaScene& m, int passes) {
+  return str(R"(<integrator type="transient_beams"><integer name="max_depth" value="2"/><integer name="passes" value=")",
+             passes, R"("/><boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false",
+             R"("/></integrator>)");
+}
+
+void expectClosedForm(const MediaScene& m, const std::string& name, int passes, int runs) {
+  auto scene = loadSceneStrict(m.xml(beamsIntegrator(m, passes)));
+  const std::vector<double> exact = m.closedFormImageSums(*scene);
+  std::vector<std::vector<double>> perRun = imageSumsPerRun(scene, name, runs);
+  const int bins = m.grid.bins;
+  // Coarse bins 0..3 (4 fine bins each) and the window.
+  const int coarse = 4, per = bins / coarse;
+  std::vector<Mean> est(size_t(coarse) + 1);
+  std::vector<double> ref(size_t(coarse) + 1, 0.0), timeSlack(size_t(coarse) + 1, 0.0);
+  for (const auto& run : perRun) {
+    EXPECT_EQ(run[0], 0.0) << name << ": energy in bin 0, before the earliest arrival";
+    EXPECT_EQ(run[1], 0.0) << name << ": energy in bin 1, before the earliest arrival";
+    std::vector<double> c(size_t(coarse) + 1, 0.0);
+    for (int b = 0; b < bins; ++b) c[size_t(b / per)] += run[size_t(b)], c.back() += run[size_t(b)];
+    for (size_t k = 0; k < c.size(); ++k) est[k].add(c[k]);
+  }
+  for (int b = 0; b < bins; ++b) ref[size_t(b / per)] += exact[size_t(b)], ref.back() += exact[size_t(b)];
+  // Half a fine bin's mass on each side of each coarse edge may cross it;
+  // the window's end likewise (nothing moves before its start: causality).
+  for (int k = 0; k < coarse; ++k) {
+    const int lo = k * per, hi = lo + per - 1;
+    timeSlack[size_t(k)] = 0.5 * (exact[size_t(lo)] + exact[size_t(hi)] + (lo > 0 ? exact[size_t(lo - 1)] : 0.0) +
+                                  (hi + 1 < bins ? exact[size_t(hi + 1)] : 0.0));
+  }
+  timeSlack.back() = 0.5 * (exact.back() + exact[size_t(bins - 2)]);
+  const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
+  for (size_t k = 0; k < est.size(); ++k) {
+    const bool window = k + 1 == est.size();
+    const double bias = boundary * ref[k] + timeSlack[k];
+    std::printf("%s %s: beams %.6g +- %.2g, closed form %.6g (%+.3f %%), bias bound %.2g\n", name.c_str(),
+                window ? "window" : str("coarse bin ", k).c_str(), est[k].mean(), est[k].standardError(), ref[k],
+                100 * (est[k].mean() / ref[k] - 1), bias);
+    EXPECT_NEAR(est[k].mean(), ref[k], 5 * est[k].standardError() + bias) << name << (window ? " window" : " coarse bin ") << k;
+  }
+  // The derived bias bound of the window is below 0.5 % of it (issue 14).
+  EXPECT_LT((boundary * ref.back() + timeSlack.back()) / ref.back(), 0.005) << name;
+}
+
+MediaScene unbounded(bool observerTime) {
+  MediaScene m;
+  m.model.bounded = false;
+  m.model.observerTime = observerTime;
+  m.model.sigmaT = 0.8, m.model.sigmaS = 0.6, m.model.eta = 1.33, m.model.intensity = 100.0;
+  m.model.light = Point3f(0.7f, 0.2f, 1.5f);  // beside the 30-degree field of view
+  m.camera = Point3f(0.0f), m.target = Point3f(0.0f, 0.0f, 1.0f), m.fov = 30.0f;
+  m.windowFrom(m.model.eta * 0.3);
+  return m;
+}
+
+MediaScene sphere(bool observerTime) {
+  MediaScene m;
+  m.model.bounded = true;
+  m.model.observerTime = observerTime;
+  m.model.radius = 1.5, m.model.sigmaT = 1.0, m.model.sigmaS = 0.8, m.model.eta = 1.5, m.model.intensity = 100.0;
+  m.model.light = Point3f(1.2f, 0.5f, 0.3f);  // inside, beside the field of view
+  m.camera = Point3f(0.0f, 0.0f, -4.0f), m.target = Point3f(0.0f), m.fov = 30.0f;
+  m.windowFrom(m.model.eta * 0.25);
+  return m;
+}
+
+}  // namespace
+
+TEST(TransientBeamsClosedForm, UnboundedMediumWithObserverTime) { expectClosedForm(unbounded(true), "unbounded", 4, 6); }
+TEST(TransientBeamsClosedForm, UnboundedMediumWithoutObserverTime) {
+  expectClosedForm(unbounded(false), "unbounded-no-ot", 4, 6);
+}
+TEST(TransientBeamsClosedForm, BoundedMediumWithObserverTime) { expectClosedForm(sphere(true), "sphere", 4, 6); }
+TEST(TransientBeamsClosedForm, BoundedMediumWithoutObserverTime) {
+  expectClosedForm(sphere(false), "sphere-no-ot", 4, 6);
+}

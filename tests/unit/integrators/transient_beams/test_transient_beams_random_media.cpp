@@ -1,0 +1,94 @@
+// Randomised media scenes (media_scene_generator.h, seeded): transient_beams
+// at its defaults (derived radius; max_depth 2) against transient_path, an
+// independent unbiased estimator, on the same scene: the window sum and four
+// coarse bins agree within 5 standard errors of the runs' means plus the
+// beams' derived bias bound (boundary loss below BoundaryBiasTarget, a pair's
+// time footprint: half a fine bin's mass each side of an edge); the two
+// bins ending before the earliest possible arrival are exactly empty in both;
+// no NaN or Inf reaches the film (render() checks). CI runs seeds 1-3;
+// FEMTO_MEDIA_SWEEP=N runs seeds 1..N (tools/bench/random_media_sweep.sh).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <transient_beams/radius_rule.h>
+
+#include "media_scene_generator.h"
+#include "transient_agreement_util.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+std::string integratorXml(const char* type, const MediaScene& m, int passes) {
+  return str(R"(<integrator type=")", type, R"("><integer name="max_depth" value="2"/>)",
+             passes > 0 ? str(R"(<integer name="passes" value=")", passes, R"("/>)") : std::string(),
+             R"(<boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false", R"("/></integrator>)");
+}
+
+int sweepSeeds() {
+  const char* n = std::getenv("FEMTO_MEDIA_SWEEP");
+  return n ? std::max(1, std::atoi(n)) : 3;
+}
+
+/// Per coarse bin (4 fine bins each) and the window: the runs' means.
+std::vector<Mean> coarseSums(const std::vector<std::vector<double>>& perRun, int bins, const std::string& what) {
+  const int per = 4, coarse = bins / per;
+  std::vector<Mean> sums(size_t(coarse) + 1);
+  for (const auto& run : perRun) {
+    EXPECT_EQ(run[0], 0.0) << what << ": energy in bin 0, before the earliest possible arrival";
+    EXPECT_EQ(run[1], 0.0) << what << ": energy in bin 1, before the earliest possible arrival";
+    std::vector<double> c(size_t(coarse) + 1, 0.0);
+    for (int b = 0; b < bins; ++b) c[size_t(b / per)] += run[size_t(b)], c.back() += run[size_t(b)];
+    for (size_t k = 0; k < c.size(); ++k) sums[k].add(c[k]);
+  }
+  return sums;
+}
+
+}  // namespace
+
+TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
+  const int seeds = sweepSeeds(), runs = 4;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    MediaScene m = randomMediaScene(uint64_t(seed));
+    const std::string what =
+        str("seed ", seed, " (", m.model.bounded ? "sphere" : "unbounded", ", light ", m.lightInside() ? "in" : "out",
+            ", camera ", m.cameraInside() ? "in" : "out", ", sigma_t ", m.model.sigmaT, ", eta ", m.model.eta,
+            ", observer time ", m.model.observerTime ? "on" : "off", ")");
+    std::printf("%s\n", what.c_str());
+    MediaScene path = m;
+    path.spp = 64;
+    auto beamsScene = loadSceneStrict(m.xml(integratorXml("transient_beams", m, 2)));
+    auto pathScene = loadSceneStrict(path.xml(integratorXml("transient_path", m, 0)));
+    const auto beamRuns = imageSumsPerRun(beamsScene, str("random-media-beams-", seed), runs);
+    const auto pathRuns = imageSumsPerRun(pathScene, str("random-media-path-", seed), runs);
+    const std::vector<Mean> b = coarseSums(beamRuns, m.grid.bins, what + " beams");
+    const std::vector<Mean> p = coarseSums(pathRuns, m.grid.bins, what + " path");
+    // Fine-bin means of path for the time-footprint slack.
+    std::vector<double> fine(size_t(m.grid.bins), 0.0);
+    for (const auto& run : pathRuns)
+      for (int k = 0; k < m.grid.bins; ++k) fine[size_t(k)] += run[size_t(k)] / runs;
+    const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
+    // The closed form's window sum too (approximate where the light is in view).
+    double exact = 0.0;
+    for (double v : m.closedFormImageSums(*pathScene, 4000)) exact += v;
+    std::printf("  closed-form window %.5g%s\n", exact, m.target == m.model.light ? " (light in view)" : "");
+    for (size_t k = 0; k < b.size(); ++k) {
+      const bool window = k + 1 == b.size();
+      const int lo = window ? 0 : int(k) * 4, hi = window ? m.grid.bins - 1 : lo + 3;
+      double slack = 0.5 * (fine[size_t(hi)] + (hi + 1 < m.grid.bins ? fine[size_t(hi + 1)] : 0.0));
+      if (!window) slack += 0.5 * (fine[size_t(lo)] + (lo > 0 ? fine[size_t(lo - 1)] : 0.0));
+      const double se = std::sqrt(b[k].standardError() * b[k].standardError() +
+                                  p[k].standardError() * p[k].standardError());
+      std::printf("  %s: beams %.5g +- %.2g, path %.5g +- %.2g, bias bound %.2g\n",
+                  window ? "window" : str("coarse bin ", k).c_str(), b[k].mean(), b[k].standardError(), p[k].mean(),
+                  p[k].standardError(), boundary * p[k].mean() + slack);
+      EXPECT_NEAR(b[k].mean(), p[k].mean(), 5 * se + boundary * std::abs(p[k].mean()) + slack + 1e-9)
+          << what << (window ? " window" : str(" coarse bin ", k));
+    }
+  }
+}

@@ -1,0 +1,13 @@
+#!/bin/sh
+# The longer sweep of the randomised media scenes (issue 14): seeds 1..N of
+# tests/unit/integrators/transient_beams/media_scene_generator.h, each
+# rendered by transient_beams (defaults, derived radius) and transient_path,
+# compared as TransientBeamsRandomMedia does in CI on seeds 1-3 (window sum
+# and coarse bins within 5 sigma + the derived bias bound; nothing before
+# the earliest arrival; no NaN/Inf). About 4 s of CPU per seed.
+#   tools/bench/random_media_sweep.sh [N=40] [build dir=build]
+set -eu
+N=${1:-40}
+BUILD=${2:-build}
+FEMTO_MEDIA_SWEEP=$N FEMTO_PLUGIN_PATH="$BUILD/bin/plugins" \
+  "$BUILD/bin/femto_unit_tests" --gtest_filter='TransientBeamsRandomMedia.*' | grep -E "seed|window|Failure|OK|FAILED"
