@@ -33,9 +33,15 @@ grep -ohE '(name|type|value|id|version|filename)="[A-Za-z_0-9.]{1,24}"' $corpus/
 printf '"<scene version=\\"3.0.0\\">"\n"</scene>"\n"<include filename=\\""\n"<ref id=\\""\n"<default name=\\""\n"$"\n"NaN"\n"inf"\n"-1e300"\n' >> $dict
 
 export FEMTO_PLUGIN_PATH=$build/bin/plugins FEMTO_FUZZ_BASE_DIR=$base
-export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
+# The shared sanitizer runtime (-shared-libsan) lives in clang's own folder.
+export LD_LIBRARY_PATH="$(dirname "$(clang++ -print-file-name=libclang_rt.asan-x86_64.so)")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+# The executable links the runtime after libfuzzer's own: order check off (the runtime is the shared one).
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:verify_asan_link_order=0 UBSAN_OPTIONS=print_stacktrace=1
 # -timeout: a scene that takes 10 s to load is a hang; -rss_limit_mb and
 # -malloc_limit_mb: a scene asking for more is the bad_alloc we must not have.
-$build/bin/femto_fuzz_scene_loader $corpus -dict=$dict -max_total_time="$seconds" -jobs="$jobs" -workers="$jobs" \
+# Several jobs fork workers that log to fuzz-N.log; one runs in this process.
+parallel=()
+[ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
+$build/bin/femto_fuzz_scene_loader $corpus -dict=$dict -max_total_time="$seconds" "${parallel[@]}" \
   -timeout=10 -rss_limit_mb=4096 -malloc_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
   -artifact_prefix=$build/fuzz-findings/ 2>&1 | tee $build/fuzz.log | grep -E '^#|stat::|ERROR|SUMMARY|Done' | tail -40
