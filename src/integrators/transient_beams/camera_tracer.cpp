@@ -32,8 +32,8 @@ constexpr float MinPhotonCosine = 1e-4f;
 struct CameraTracer::Path : OpticalPath {
   bool cameraSegment = true;  // no (specular) scattering vertex yet
   Color3f throughput{1.0f};
-  int segments = 0;           // camera segments completed before the current one
-  ScatterOrigin prev;         // camera rays and specular bounces (delta): emission found by a ray counts fully
+  int segments = 0;    // camera segments completed before the current one
+  ScatterOrigin prev;  // camera rays and specular bounces (delta): emission found by a ray counts fully
 };
 
 void CameraTracer::sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) {
