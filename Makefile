@@ -6,7 +6,7 @@ SCENE ?= scenes/cornell-box/scene.xml
 OUT ?= out/cornell-box.exr
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps configure build build-render render test clean
+.PHONY: all deps configure build build-render render test sanitize sanitize-thread clean
 
 all: build
 
@@ -31,5 +31,22 @@ render: build-render
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer, and the
+# render loop and photon-beam passes (the multi-threaded code) under
+# ThreadSanitizer; separate build folders, not part of `make test`.
+SANITIZE_UNIT = $(1)/bin/femto_unit_tests --gtest_brief=1
+sanitize: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMTO_SANITIZE=address
+	cmake --build build-asan -j $(JOBS) --target femto_unit_tests femto_render
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  FEMTO_PLUGIN_PATH=build-asan/bin/plugins $(call SANITIZE_UNIT,build-asan)
+
+TSAN_FILTER ?= RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount*:TransientStreaming.*
+sanitize-thread: deps
+	cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMTO_SANITIZE=thread
+	cmake --build build-tsan -j $(JOBS) --target femto_unit_tests femto_render
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+	  FEMTO_PLUGIN_PATH=build-tsan/bin/plugins $(call SANITIZE_UNIT,build-tsan) --gtest_filter='$(TSAN_FILTER)'
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) build-asan build-tsan out

@@ -1,8 +1,12 @@
 #include "interrupt.h"
 
+#include <pthread.h>
+
 #include <csignal>
 #include <cstring>
 #include <unistd.h>
+
+#include <femto/base/temp_files.h>
 
 namespace femto::cli {
 namespace {
@@ -10,7 +14,8 @@ namespace {
 // A signal handler may only touch lock-free atomics.
 static_assert(std::atomic<bool>::is_always_lock_free);
 std::atomic<bool> gCancel{false};
-struct sigaction gPrevious;
+constexpr int HandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
+struct sigaction gPrevious[3];
 
 void writeStderr(const char* message) {
   // write(2) is async-signal-safe; iostreams and printf are not.
@@ -18,12 +23,31 @@ void writeStderr(const char* message) {
   (void)ignored;
 }
 
-extern "C" void onInterrupt(int) {
-  if (gCancel.exchange(true)) {
-    writeStderr("\ninterrupted again: exiting without writing an image\n");
-    _exit(130);  // 128 + SIGINT, as shells report it
+/// Remove what is not complete, then die by `signal` itself (default action).
+[[noreturn]] void endBySignal(int signal) {
+  removeTempFilesNow();
+  struct sigaction fallback {};
+  fallback.sa_handler = SIG_DFL;
+  sigemptyset(&fallback.sa_mask);
+  sigaction(signal, &fallback, nullptr);
+  // The handler runs with its signal blocked: unblock it, or raise() would
+  // only leave it pending.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, signal);
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+  raise(signal);
+  _exit(128 + signal);  // only if the default action returned (it does not for these signals)
+}
+
+extern "C" void onSignal(int signal) {
+  if (signal == SIGINT && !gCancel.exchange(true)) {
+    writeStderr("\ninterrupted: finishing and writing the partial image (Ctrl-C again to quit at once)\n");
+    return;
   }
-  writeStderr("\ninterrupted: finishing and writing the partial image (Ctrl-C again to quit at once)\n");
+  writeStderr(signal == SIGINT ? "\ninterrupted again: quitting at once; unfinished outputs are removed\n"
+                               : "\nterminated: quitting at once; unfinished outputs are removed\n");
+  endBySignal(signal);
 }
 
 }  // namespace
@@ -31,12 +55,14 @@ extern "C" void onInterrupt(int) {
 InterruptGuard::InterruptGuard() {
   gCancel = false;
   struct sigaction action {};
-  action.sa_handler = onInterrupt;
+  action.sa_handler = onSignal;
   sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, &gPrevious);
+  for (int k = 0; k < 3; ++k) sigaction(HandledSignals[k], &action, &gPrevious[k]);
 }
 
-InterruptGuard::~InterruptGuard() { sigaction(SIGINT, &gPrevious, nullptr); }
+InterruptGuard::~InterruptGuard() {
+  for (int k = 0; k < 3; ++k) sigaction(HandledSignals[k], &gPrevious[k], nullptr);
+}
 
 const std::atomic<bool>& InterruptGuard::cancelFlag() const { return gCancel; }
 

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -82,9 +83,11 @@ LoadOptions loadOptions(const RenderSettings& settings) {
   return options;
 }
 
-void printSummary(const fs::path& output, const RenderStats& stats, bool interrupted) {
+/// `seconds`: wall time of the whole job (every pass and every file written),
+/// not only of the tile loops that stats.seconds sums.
+void printSummary(const fs::path& output, const RenderStats& stats, double seconds, bool interrupted) {
   std::cout << std::fixed << std::setprecision(3) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
-            << stats.seconds << " s (" << stats.samples << " samples)\n";
+            << seconds << " s (" << stats.samples << " samples)\n";
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " of ", stats.samples,
             " samples were NaN, infinite or negative and were left out of the image: the integrator has a bug");
@@ -110,8 +113,10 @@ int render(const RenderSettings& settings) {
   scene->sensor().film().checkOutputPath(options.output);
   InterruptGuard interrupt;
   options.cancel = &interrupt.cancelFlag();
+  const auto start = std::chrono::steady_clock::now();
   RenderStats stats = scene->integrator().render(*scene, options);
-  printSummary(options.output, stats, interrupt.interrupted());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printSummary(options.output, stats, seconds, interrupt.interrupted());
   // 128 + SIGINT tells scripts the image is partial.
   return interrupt.interrupted() ? 130 : 0;
 }

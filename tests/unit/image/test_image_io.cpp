@@ -77,5 +77,24 @@ TEST(ImageIO, ErrorsNameTheFile) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(ImageIO, WriteErrorsNameTheGivenPathNotTheTemporary) {
+  // /proc refuses new files: OpenEXR and OpenImageIO fail on the hidden
+  // temporary the writer made, and the message must say the path given.
+  Bitmap image(2, 2, 3);
+  for (auto write : {+[](const std::filesystem::path& p, const Bitmap& b) { writeEXR(p, b); },
+                     +[](const std::filesystem::path& p, const Bitmap& b) { writeDisplayImage(p, b); },
+                     +[](const std::filesystem::path& p, const Bitmap& b) { writeFloatImage(p, b); }})
+    for (const char* name : {"/proc/femto-x.exr", "/proc/femto-x.png", "/proc/femto-x.tif"}) {
+      try {
+        write(name, image);
+        ADD_FAILURE() << "writing " << name << " succeeded";
+      } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_EQ(message.find(".tmp-"), std::string::npos) << message;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace femto

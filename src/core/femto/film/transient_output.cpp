@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <femto/base/error.h>
+#include <femto/core/resources.h>
 #include <femto/film/volume_info.h>
 #include <femto/film/volume_scan.h>
 
@@ -38,7 +39,8 @@ void removeStaleFrames(const std::filesystem::path& dir, const std::string& exte
   for (const auto& p : stale) std::filesystem::remove(p, ec);
 }
 
-void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes) {
+void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes,
+                 const std::function<void(int done, int total)>& onBatch) {
   const int bins = volume.bins();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -53,21 +55,31 @@ void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size
     std::vector<Bitmap> frames = readFrames(volume, b0, count);
     // Frames are independent files: compress and write them in parallel.
     tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameFileName(b0 + k, bins, ".exr"), frames[size_t(k)]); });
+    if (onBatch) onBatch(b0 + count, bins);
   }
 }
 
 TransientOutput::TransientOutput(const TransientFilm& film, const std::filesystem::path& path) : film_(film) {
   const Point2i crop = film.cropSize();
+  const double pixels = double(crop.x) * double(crop.y);
+  requireMemory(3.0 * pixels * 3.0 * sizeof(float) + FrameBudgetBytes,
+                str("the steady, before and after images of ", crop.x, "x", crop.y, " pixels"),
+                "render a smaller image (--resolution WxH) or a crop window");
   steady_ = before_ = after_ = Bitmap(crop.x, crop.y, 3);
   if (path.empty()) return;
   paths_ = film.outputPaths(path);
   if (!film.writesVolume() && !film.writesFrames()) return;
+  const int bins = film.timeGrid().bins;
+  requireDisk(paths_->volume, pixels * double(bins) * 3.0 * sizeof(float),
+              str("the transient volume of ", crop.x, "x", crop.y, " pixels x ", bins, " bins"),
+              "use fewer time bins or pixels, or write elsewhere (-o)");
   // Written under a temporary name and renamed at the end, as every output:
   // a reader never sees a half-written volume under the final name.
   std::filesystem::path dir = paths_->volume.has_parent_path() ? paths_->volume.parent_path() : ".";
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   volumeTmp_ = dir / (".tmp-" + std::to_string(::getpid()) + "-" + paths_->volume.filename().string());
+  volumeTmpGuard_.emplace(volumeTmp_);
   volume_.emplace(NpyVolume::create(volumeTmp_, crop.y, crop.x, film.timeGrid().bins));
 }
 
@@ -117,22 +129,24 @@ VolumeInfo TransientOutput::volumeInfo() const {
   return info;
 }
 
-void TransientOutput::finish() {
+void TransientOutput::finish(const std::function<void(int done, int total)>& onFrames) {
   if (!paths_) return;
   Film::writeExrWithPreview(paths_->steady, steady_);
   writeEXR(paths_->before, before_);
   writeEXR(paths_->after, after_);
   if (!volume_) return;
-  if (film_.writesFrames()) writeFrames(*volume_, paths_->framesDir, FrameBudgetBytes);
+  if (film_.writesFrames()) writeFrames(*volume_, paths_->framesDir, FrameBudgetBytes, onFrames);
   volume_.reset();
   std::error_code ec;
   if (film_.writesVolume()) {
     std::filesystem::rename(volumeTmp_, paths_->volume, ec);
+    if (!ec) volumeTmpGuard_.reset();
     if (ec) throw Error(str("cannot write \"", paths_->volume.string(), "\": ", ec.message()));
     writeVolumeInfo(volumeInfoPath(paths_->volume), volumeInfo());
   } else {
     std::filesystem::remove(volumeTmp_, ec);
   }
+  volumeTmpGuard_.reset();
   volumeTmp_.clear();
 }
 

@@ -7,10 +7,12 @@
 // bounded by the tiles in flight plus a fixed frame budget, whatever the
 // number of bins.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include <femto/base/temp_files.h>
 #include <femto/image/image_io.h>
 #include <femto/film/npy_volume.h>
 #include <femto/film/transient_film.h>
@@ -33,7 +35,10 @@ class TransientOutput {
   void consume(TransientTile& tile, int pass = 0);
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
-  void finish();
+  /// `onFrames(done, total)` is called after each batch of frames written.
+  void finish(const std::function<void(int done, int total)>& onFrames = {});
+  /// Does finish() write one frame per bin (the longest part of it)?
+  bool writesFrames() const { return paths_ && volume_ && film_.writesFrames(); }
 
   /// Developed crop-window images (valid for consumed tiles).
   const Bitmap& steady() const { return steady_; }
@@ -47,6 +52,7 @@ class TransientOutput {
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;
   std::filesystem::path volumeTmp_;
+  std::optional<TempFileGuard> volumeTmpGuard_;  // removed even when a signal ends the process
   std::optional<NpyVolume> volume_;
   Bitmap steady_, before_, after_;
 };
@@ -54,7 +60,9 @@ class TransientOutput {
 /// Write one EXR per time bin of `volume` into `dir` (frame_00000.exr, ...;
 /// stale frame_*.exr files there are removed first), reading the volume
 /// again for each batch of frames that fits in `budgetBytes`.
-void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes);
+/// `onBatch(done, total)`, when given, is called after each batch.
+void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size_t budgetBytes,
+                 const std::function<void(int done, int total)>& onBatch = {});
 
 /// "frame_00042" + extension: the file of `bin` among `bins` (at least five
 /// digits, zero-padded, so names sort in time order).

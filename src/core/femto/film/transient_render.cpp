@@ -5,9 +5,11 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <limits>
 
 #include <femto/base/error.h>
+#include <femto/core/progress.h>
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_output.h>
 #include <femto/film/transient_tile.h>
@@ -32,6 +34,11 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
                             const TransientPassFunction& passIntegrator) {
   checkEmitterPulses(scene, film);
   TransientOutput output(film, options.output);
+  // One bar for the whole job: every pass, one unit per pixel, then the
+  // frames, counted as one more pass (they read the whole volume back).
+  const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
+  const uint64_t frameUnits = output.writesFrames() ? pixels : 0;
+  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)) + frameUnits, options.progress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
     std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
@@ -42,14 +49,22 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     auto consume = [&](TileAccumulator& tile) { output.consume(static_cast<TransientTile&>(tile), pass); };
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume));
+    accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
+                                                TransientTile::bytesPerPixel(film.timeGrid().bins), &progress));
     if (!stats.completed) break;
   }
+  uint64_t framesCounted = 0;
+  auto onFrames = [&](int done, int total) {
+    const uint64_t units = frameUnits * uint64_t(done) / uint64_t(std::max(total, 1));
+    progress.update(units - framesCounted);
+    framesCounted = units;
+  };
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0)
-    tbb::task_arena(options.threads).execute([&] { output.finish(); });
+    tbb::task_arena(options.threads).execute([&] { output.finish(onFrames); });
   else
-    output.finish();
+    output.finish(onFrames);
+  progress.finish();
   return stats;
 }
 

@@ -77,6 +77,10 @@ class TransientTile final : public TileAccumulator {
   TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context);
   bool addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) override;
 
+  /// Memory per pixel at most: the bins and, for continuous pulses, their
+  /// step derivative (bins x 3 floats each), plus the RGB sums and weight.
+  static double bytesPerPixel(int bins) { return (2.0 * 3.0 * double(bins) + 10.0) * sizeof(float); }
+
   const Point2i& offset() const { return offset_; }
   const Point2i& size() const { return size_; }
   int bins() const { return bins_; }

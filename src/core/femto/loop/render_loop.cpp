@@ -3,10 +3,16 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <optional>
 #include <vector>
 
+#include <femto/base/error.h>
 #include <femto/core/log.h>
+#include <femto/core/resources.h>
 #include <femto/core/progress.h>
 #include <femto/render/scene.h>
 
@@ -19,13 +25,13 @@ struct Tile {
   uint64_t samples = 0, invalid = 0;
 };
 
-std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size) {
+std::vector<Tile> makeTiles(const Point2i& offset, const Point2i& size, int side) {
   std::vector<Tile> tiles;
-  for (int y = 0; y < size.y; y += RenderTileSize)
-    for (int x = 0; x < size.x; x += RenderTileSize) {
+  for (int y = 0; y < size.y; y += side)
+    for (int x = 0; x < size.x; x += side) {
       Tile t;
       t.offset = Point2i(offset.x + x, offset.y + y);
-      t.size = Point2i(std::min(RenderTileSize, size.x - x), std::min(RenderTileSize, size.y - y));
+      t.size = Point2i(std::min(side, size.x - x), std::min(side, size.y - y));
       tiles.push_back(std::move(t));
     }
   return tiles;
@@ -67,15 +73,35 @@ class ImageBlockTile final : public TileAccumulator {
   const SplatFunction& splatFn_;
 };
 
+/// Tiles rendering or waiting for an earlier one to be consumed: the
+/// pipeline's token limit, in the task arena the render runs in.
+size_t tilesInFlight() { return size_t(2 * tbb::this_task_arena::max_concurrency()); }
+
 }  // namespace
 
+int tileSideWithin(double bytesPerPixel, size_t tilesInFlight) {
+  if (bytesPerPixel <= 0.0) return RenderTileSize;
+  const double pixelsPerTile = TileMemoryBound / (double(tilesInFlight) * bytesPerPixel);
+  if (pixelsPerTile < 1.0)
+    throw Error(str("one pixel of a tile holds ", formatBytes(bytesPerPixel), " and ", tilesInFlight,
+                    " tiles are in flight (two per thread): ", formatBytes(bytesPerPixel * double(tilesInFlight)),
+                    ", above the ", formatBytes(TileMemoryBound),
+                    " the render loop allows; use fewer time bins (or fewer threads, -t)"));
+  return std::clamp(int(std::sqrt(pixelsPerTile)), 1, RenderTileSize);
+}
+
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume) {
+                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress) {
   const Film& film = scene.sensor().film();
   const Sampler& prototype = scene.sensor().sampler();
-  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize());
+  std::optional<tbb::task_arena> arena;
+  if (options.threads > 0) arena.emplace(options.threads);
+  const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
+  std::vector<Tile> tiles = makeTiles(film.cropOffset(), film.cropSize(), tileSideWithin(tileBytesPerPixel, tokens));
   const uint64_t pixelsTotal = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  ProgressReporter progress("Rendering", pixelsTotal, options.progress);
+  std::optional<ProgressReporter> ownProgress;
+  ProgressReporter& progress = jobProgress ? *jobProgress : ownProgress.emplace("Rendering", pixelsTotal, options.progress);
+  const auto start = std::chrono::steady_clock::now();
   bool cancelled = false;
   RenderStats stats;
 
@@ -84,7 +110,6 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
     // order. The token limit bounds how many tiles exist at once (rendering
     // or waiting for an earlier tile), which bounds memory for large tiles
     // (transient films) and keeps the consumer's sums in a fixed order.
-    const size_t tokens = size_t(2 * tbb::this_task_arena::max_concurrency());
     size_t next = 0;
     tbb::parallel_pipeline(
         tokens,
@@ -114,16 +139,14 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
               stats.invalidSamples += tile->invalid;
             }));
   };
-  if (options.threads > 0) {
-    tbb::task_arena arena(options.threads);
-    arena.execute(work);
-  } else {
+  if (arena)
+    arena->execute(work);
+  else
     work();
-  }
-  progress.finish();
+  if (ownProgress) ownProgress->finish();
 
   stats.completed = !cancelled;
-  stats.seconds = progress.elapsedSeconds();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
   if (cancelled) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
@@ -135,7 +158,7 @@ namespace {
 /// Splat `splatFn` through the film's reconstruction filter into `result`
 /// (crop-window sized block), tiles merged in tile order.
 RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, const SplatFunction& splatFn,
-                             ImageBlock& result) {
+                             ImageBlock& result, ProgressReporter* progress = nullptr) {
   const ReconstructionFilter* filter = scene.sensor().film().filter();
   const int channels = result.channelCount();
   auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
@@ -144,7 +167,7 @@ RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, c
   // Merged in tile order: the floating-point sums are then the same whatever
   // the number of threads or the schedule.
   auto consume = [&](TileAccumulator& tile) { result.merge(static_cast<ImageBlockTile&>(tile).block); };
-  return renderTileStream(scene, options, makeTile, consume);
+  return renderTileStream(scene, options, makeTile, consume, 0.0, progress);
 }
 
 }  // namespace
@@ -186,6 +209,9 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
   // Every pass splats the same number of samples per pixel into one block:
   // its developed value (weighted sum / weight sum) is the mean of the passes.
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
+  // One bar for all passes: its ETA is that of the whole render.
+  const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
+  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)), options.progress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
     CameraRadianceFunction radiance = radianceOf(pass);
@@ -197,9 +223,12 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
     };
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderTiles(scene, passOptions, sampleFn, result));
+    accumulatePassStats(stats, renderSplatTiles(scene, passOptions, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+      return block.put(pos, sampleFn(pos, sampler));
+    }, result, &progress));
     if (!stats.completed) break;
   }
+  progress.finish();
   if (!options.output.empty()) film.develop(result, options.output);
   return stats;
 }

@@ -17,6 +17,7 @@
 
 namespace femto {
 
+class ProgressReporter;
 class Scene;
 
 /// What one tile accumulates into; the loop feeds it every camera sample of the tile.
@@ -35,13 +36,29 @@ using TileFactory = std::function<std::unique_ptr<TileAccumulator>(const Point2i
 /// the crop window); the accumulator is destroyed right after.
 using TileConsumer = std::function<void(TileAccumulator& tile)>;
 
-/// Side length of the square tiles (pixels).
+/// Side length of the square tiles (pixels), unless their memory needs less.
 inline constexpr int RenderTileSize = 32;
+
+/// The most memory the tiles in flight may hold together (transient tiles
+/// hold bins x 3 floats per pixel: at 2^20 bins a 32x32 tile alone is 12 GiB).
+inline constexpr double TileMemoryBound = double(1ull << 30);
+
+/// The side of square tiles such that `tilesInFlight` tiles of
+/// `bytesPerPixel` stay within TileMemoryBound: RenderTileSize, or less.
+/// Throws an Error naming the sizes when even one-pixel tiles do not fit.
+int tileSideWithin(double bytesPerPixel, size_t tilesInFlight);
 
 /// Render every pixel of the scene sensor's crop window, sampleCount() samples
 /// per pixel, into per-tile accumulators, streaming them to `consume`.
+/// `tileBytesPerPixel`: what an accumulator holds per pixel, which shrinks
+/// the tiles when needed (tileSideWithin). Each pixel's samples depend only
+/// on the seed and the pixel, so the tile side changes no value.
+/// `progress`: the bar of a longer job this stream is part of (several
+/// passes, frames written after), advanced by one per pixel; null: a bar of
+/// its own, when options.progress.
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume);
+                             const TileConsumer& consume, double tileBytesPerPixel = 0.0,
+                             ProgressReporter* progress = nullptr);
 
 /// Called per sample: returns the value to splat at `filmPos` (full-film pixels).
 using SampleFunction = std::function<Color3f(const Point2f& filmPos, Sampler& sampler)>;

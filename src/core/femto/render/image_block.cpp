@@ -4,9 +4,13 @@
 #include <cmath>
 
 #include <femto/base/error.h>
+#include <femto/core/resources.h>
 #include <femto/render/rfilter.h>
 
 namespace femto {
+namespace {
+constexpr double LargeBlockBytes = 64.0 * 1024 * 1024;
+}  // namespace
 
 ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter)
     : ImageBlock(offset, size, filter, 3) {}
@@ -18,6 +22,13 @@ ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const Reconst
   // filter radius: at most ceil(radius - 1/2) pixels beyond the tile's edge.
   float radius = filter ? filter->radius() : 0.5f;
   border_ = std::max(0, int(std::ceil(radius - 0.5f)));
+  // A whole-image block is checked against the free memory before it is
+  // allocated (twice: developing it makes an image of the same order);
+  // tiles are far below the threshold and skip the check.
+  const double bytes = double(storedWidth()) * double(storedHeight()) * double(stride()) * sizeof(float);
+  if (bytes > LargeBlockBytes)
+    requireMemory(2.0 * bytes, str("the ", size.x, "x", size.y, " image (", channels, " channels)"),
+                  "render a smaller image (--resolution WxH) or a crop window");
   data_.assign(size_t(storedWidth()) * storedHeight() * stride(), 0.0f);
 }
 

@@ -1,0 +1,58 @@
+#include <femto/core/resources.h>
+
+#include <sys/statvfs.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <femto/base/error.h>
+
+namespace femto {
+
+std::string formatBytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int unit = 0;
+  while (bytes >= 1024.0 && unit < 5) bytes /= 1024.0, ++unit;
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
+  return text;
+}
+
+std::optional<uint64_t> availableMemoryBytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return std::nullopt;
+}
+
+std::optional<uint64_t> freeDiskBytes(const std::filesystem::path& path) {
+  std::filesystem::path probe = std::filesystem::absolute(path);
+  std::error_code ec;
+  while (!probe.empty() && !std::filesystem::exists(probe, ec)) {
+    if (probe == probe.parent_path()) break;
+    probe = probe.parent_path();
+  }
+  struct statvfs fs {};
+  if (::statvfs(probe.c_str(), &fs) != 0) return std::nullopt;
+  return uint64_t(fs.f_bavail) * uint64_t(fs.f_frsize);
+}
+
+void requireMemory(double bytes, const std::string& what, const std::string& advice) {
+  std::optional<uint64_t> available = availableMemoryBytes();
+  if (!available || bytes <= double(*available)) return;
+  throw Error(str(what, " needs ", formatBytes(bytes), " of memory, but only ", formatBytes(double(*available)),
+                  " is available: ", advice));
+}
+
+void requireDisk(const std::filesystem::path& path, double bytes, const std::string& what, const std::string& advice) {
+  std::optional<uint64_t> free = freeDiskBytes(path);
+  if (!free || bytes <= double(*free)) return;
+  throw Error(str(what, " needs ", formatBytes(bytes), " on disk, but the file system of \"", path.string(),
+                  "\" has only ", formatBytes(double(*free)), " free: ", advice));
+}
+
+}  // namespace femto
