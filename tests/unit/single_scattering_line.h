@@ -62,8 +62,8 @@ struct SingleScatteringLine {
   /// Time-resolved radiance along o + s d (unit d) deposited into `grid`'s
   /// bins (entries: bins; the steady total in `total`). `reach`: how far an
   /// unbounded ray is followed (its tail is negligible, exp(-sigma_t reach)).
-  std::vector<double> bins(const Point3f& o, const Vec3f& d, const TimeGrid& grid, double& total,
-                           double reach = 40.0, int steps = 200000) const {
+  std::vector<double> bins(const Point3f& o, const Vec3f& d, const TimeGrid& grid, double& total, double reach = 40.0,
+                           int steps = 200000) const {
     std::vector<double> out(size_t(grid.bins), 0.0);
     total = 0.0;
     double s0 = 0.0, s1 = 0.0;

@@ -34,6 +34,7 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   // Beams cost far more per photon than surface photons (a BVH over beam
   // pieces, queried by every camera segment), and an evenly lit medium needs
   // fewer of them: by default only the first 10000 photons leave beams.
+  s.beamPhotonCountGiven = props.has("beam_photon_count");
   s.beamPhotonCount = props.getInt("beam_photon_count", s.beamPhotonCount, 0, MaxPhotons, "0: all photons leave beams");
   // 0 (as when absent) asks for the default derived from the scene (resolved()).
   const char* radiusNote = "a radius in scene units; 0: derived from the scene";
@@ -128,6 +129,17 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
     throw Error(location,
                 "transient_beams: cannot derive a beam radius (no beams and no scene extent); give \"radius\"");
+  return s;
+}
+
+BeamSettings BeamSettings::withBeamsForRadius(const DerivedRadius& derived) const {
+  BeamSettings s = *this;
+  if (beamPhotonCountGiven || !(derived.radius > 0.0) || !(derived.density > derived.radius) ||
+      !std::isfinite(derived.density))
+    return s;
+  const double ratio = derived.density / derived.radius;
+  const double wanted = double(beamPhotons()) * (volumeEstimator == VolumeEstimator::Points ? ratio * ratio : ratio);
+  s.beamPhotonCount = wanted >= double(photonCount) ? 0 : int64_t(std::ceil(wanted));
   return s;
 }
 

@@ -43,12 +43,13 @@ struct DerivedRadius {
 /// depthAllowed() come from PathDepthSettings, read with path's rule.
 struct BeamSettings : PathDepthSettings {
   int passes = 1;
-  int64_t photonCount = 100000;     // photons traced per pass (all leave surface photons)
-  int64_t beamPhotonCount = 10000;  // how many of them (the first ones) leave beams; 0: all
-  float radius = 0.0f;              // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
-  float surfaceRadius = 0.0f;       // surface photon kernel radius of pass 0 (0: derived)
-  float gatherFraction = 1.0f;      // probability that a camera segment in a medium gathers beams (weight 1/it)
-  float alpha = 0.7f;               // progressive radius reduction, in (0, 1]
+  int64_t photonCount = 100000;       // photons traced per pass (all leave surface photons)
+  int64_t beamPhotonCount = 10000;    // how many of them (the first ones) leave beams; 0: all
+  bool beamPhotonCountGiven = false;  // by the scene: withBeamsForRadius() then keeps it
+  float radius = 0.0f;                // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
+  float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
+  float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
+  float alpha = 0.7f;                 // progressive radius reduction, in (0, 1]
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;   // the camera segment counts toward the OPL
@@ -83,6 +84,13 @@ struct BeamSettings : PathDepthSettings {
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                   const TimeGrid& grid, const BoundingBox3f& sceneBounds,
                                   DerivedRadius* chosen = nullptr) const;
+
+  /// When the derived radius is below the density radius (the time or
+  /// boundary bound decided) and the scene did not give beam_photon_count:
+  /// as many more beam photons as keep TargetPairHits pairs per camera
+  /// segment at that radius (pairs grow as N r for beams, N r^2 for points),
+  /// at most all photons. Unchanged otherwise.
+  BeamSettings withBeamsForRadius(const DerivedRadius& derived) const;
 
   /// Pairs per camera segment the density radius aims at: enough that
   /// a gather is worth its query (a camera segment's BVH traversal costs

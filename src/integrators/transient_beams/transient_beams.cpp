@@ -21,12 +21,13 @@
 // |----------------|---------|----------------|-----------------------------------------------------------|--------|
 // | passes         | integer | 1              | progressive passes averaged into the film                 | -      |
 // | photon_count   | integer | 100000         | photons traced per pass (all leave surface photons)       | -      |
-// | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all          | -      |
+// | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all; absent: | -      |
+// |                |         |                | more when the derived radius is below the density radius  |        |
 // | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
 // |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
 // | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: the    | scene  |
 // |                |         |                | smallest of ~25 pass-0 beams per camera segment, half a   |        |
-// |                |         |                | bin's OPL footprint, 0.25 % boundary loss (radius_rule.h) |        |
+// |                |         |                | bin's OPL footprint, 0.4 % boundary loss (radius_rule.h)   |        |
 // | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
 // | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
@@ -146,10 +147,19 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
         if (pass == 0 && !(settings.radius > 0.0f)) {
           beams::DerivedRadius derived;
-          settings = settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon, settings.observerTime),
-                                                 filmTimeGrid(scene), scene.bbox(), &derived);
+          settings =
+              settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon, settings.observerTime),
+                                          filmTimeGrid(scene), scene.bbox(), &derived);
+          // A radius the film or the boundary made small gets more beams
+          // (unless the scene gave their number): pass 0 is traced again.
+          const beams::BeamSettings more = settings.withBeamsForRadius(derived);
+          if (more.beamPhotons() != settings.beamPhotons()) {
+            settings = more;
+            traced = beams::tracePhotonPass(scene, settings, seed, horizon);
+          }
           logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
-                  derived.time, ", boundary ", derived.boundary, ")");
+                  derived.time, ", boundary ", derived.boundary, "), ", settings.beamPhotons(),
+                  " beam photons per pass");
         }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
       };

@@ -13,9 +13,9 @@
 
 #include <femto/base/error.h>  // str()
 #include <femto/math/pcg32.h>
+#include <femto/math/vector.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
-#include <femto/math/vector.h>
 #include <femto/time/time_grid.h>
 
 #include "single_scattering_line.h"
@@ -31,12 +31,8 @@ struct MediaScene {
   /// No path reaches the camera before this OPL (earliestArrival()).
   double earliest = 0.0;
 
-  bool cameraInside() const {
-    return !model.bounded || distance(camera, model.center) < model.radius;
-  }
-  bool lightInside() const {
-    return !model.bounded || distance(model.light, model.center) < model.radius;
-  }
+  bool cameraInside() const { return !model.bounded || distance(camera, model.center) < model.radius; }
+  bool lightInside() const { return !model.bounded || distance(model.light, model.center) < model.radius; }
 
   /// A lower bound of every light path's OPL to the camera. Observer time
   /// on: camera and light both in the (convex) medium: eta |camera - light|
@@ -58,20 +54,22 @@ struct MediaScene {
         str(R"(<medium type="homogeneous" id="m"><rgb name="sigma_t" value=")", m.sigmaT,
             R"("/><rgb name="albedo" value=")", m.sigmaS / m.sigmaT, R"("/><float name="eta" value=")", m.eta,
             R"("/><phase type="isotropic"/></medium>)");
-    const std::string boundary =
-        m.bounded ? str(R"(<shape type="sphere"><point name="center" x=")", m.center.x, R"(" y=")", m.center.y,
-                        R"(" z=")", m.center.z, R"("/><float name="radius" value=")", m.radius,
-                        R"("/><ref name="interior" id="m"/></shape>)")
-                  : "";
+    const std::string boundary = m.bounded
+                                     ? str(R"(<shape type="sphere"><point name="center" x=")", m.center.x, R"(" y=")",
+                                           m.center.y, R"(" z=")", m.center.z, R"("/><float name="radius" value=")",
+                                           m.radius, R"("/><ref name="interior" id="m"/></shape>)")
+                                     : "";
     const std::string inMedium = R"(<ref id="m"/>)";
-    return str(R"(<scene version="3.0.0">)", integrator, medium, boundary, R"(<sensor type="perspective"><float name="fov" value=")",
-               fov, R"("/>)", cameraInside() ? inMedium : "", R"(<transform name="to_world"><lookat origin=")", camera.x,
-               ", ", camera.y, ", ", camera.z, R"(" target=")", target.x, ", ", target.y, ", ", target.z,
+    return str(R"(<scene version="3.0.0">)", integrator, medium, boundary,
+               R"(<sensor type="perspective"><float name="fov" value=")", fov, R"("/>)", cameraInside() ? inMedium : "",
+               R"(<transform name="to_world"><lookat origin=")", camera.x, ", ", camera.y, ", ", camera.z,
+               R"(" target=")", target.x, ", ", target.y, ", ", target.z,
                R"(" up="0, 1, 0"/></transform><sampler type="independent"><integer name="sample_count" value=")", spp,
                R"("/></sampler><film type="transient"><integer name="width" value=")", resolution,
                R"("/><integer name="height" value=")", resolution, R"("/><integer name="temporal_bins" value=")",
-               grid.bins, R"("/><float name="start_opl" value=")", grid.start, R"("/><float name="bin_width_opl" value=")",
-               grid.binWidth, R"("/><boolean name="write_frames" value="false"/><rfilter type="box"/></film></sensor>)",
+               grid.bins, R"("/><float name="start_opl" value=")", grid.start,
+               R"("/><float name="bin_width_opl" value=")", grid.binWidth,
+               R"("/><boolean name="write_frames" value="false"/><rfilter type="box"/></film></sensor>)",
                R"(<emitter type="point"><point name="position" x=")", m.light.x, R"(" y=")", m.light.y, R"(" z=")",
                m.light.z, R"("/><rgb name="intensity" value=")", m.intensity, R"("/>)", lightInside() ? inMedium : "",
                R"(</emitter></scene>)");

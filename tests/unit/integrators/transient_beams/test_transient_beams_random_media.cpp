@@ -27,7 +27,8 @@ namespace {
 std::string integratorXml(const char* type, const MediaScene& m, int passes) {
   return str(R"(<integrator type=")", type, R"("><integer name="max_depth" value="2"/>)",
              passes > 0 ? str(R"(<integer name="passes" value=")", passes, R"("/>)") : std::string(),
-             R"(<boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false", R"("/></integrator>)");
+             R"(<boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false",
+             R"("/></integrator>)");
 }
 
 int sweepSeeds() {
@@ -82,8 +83,8 @@ TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
       const int lo = window ? 0 : int(k) * 4, hi = window ? m.grid.bins - 1 : lo + 3;
       double slack = 0.5 * (fine[size_t(hi)] + (hi + 1 < m.grid.bins ? fine[size_t(hi + 1)] : 0.0));
       if (!window) slack += 0.5 * (fine[size_t(lo)] + (lo > 0 ? fine[size_t(lo - 1)] : 0.0));
-      const double se = std::sqrt(b[k].standardError() * b[k].standardError() +
-                                  p[k].standardError() * p[k].standardError());
+      const double se =
+          std::sqrt(b[k].standardError() * b[k].standardError() + p[k].standardError() * p[k].standardError());
       std::printf("  %s: beams %.5g +- %.2g, path %.5g +- %.2g, bias bound %.2g\n",
                   window ? "window" : str("coarse bin ", k).c_str(), b[k].mean(), b[k].standardError(), p[k].mean(),
                   p[k].standardError(), boundary * p[k].mean() + slack);
