@@ -14,4 +14,4 @@ RUNS=${2:-64}
 PASSES=${3:-4}
 BUILD=${4:-build}
 FEMTO_MEDIA_SEED=$K FEMTO_MEDIA_RUNS=$RUNS FEMTO_MEDIA_PASSES=$PASSES FEMTO_PLUGIN_PATH="$BUILD/bin/plugins" \
-  "$BUILD/bin/femto_unit_tests" --gtest_filter='TransientBeamsRandomMedia.*' | grep -E "seed|window|coarse|Failure|OK|FAILED"
+  "$BUILD/bin/femto_unit_tests" --gtest_filter='TransientBeamsRandomMedia.*' 2>&1 | grep -E "^seed|^  |Failure|OK|FAILED"
