@@ -7,11 +7,11 @@
 // bins ending before the earliest possible arrival are exactly empty in both;
 // no NaN or Inf reaches the film (render() checks). CI runs seeds 1-3;
 // FEMTO_MEDIA_SWEEP=N runs seeds 1..N (tools/bench/random_media_sweep.sh),
-// FEMTO_MEDIA_SEED=k seed k alone, FEMTO_MEDIA_RUNS=n n runs per renderer
-// (default 4), FEMTO_MEDIA_PASSES=p beams passes per run (default 2): how a
-// suspected bias is measured beyond the CI runs' noise
-// (tools/bench/random_media_seed.sh); FEMTO_MEDIA_XML=dir also writes each
-// seed's two scenes there, for `femto render`.
+// FEMTO_MEDIA_SEED=k seed k alone, FEMTO_MEDIA_RUNS=n n >= 2 runs per
+// renderer (default 4; the spread needs two), FEMTO_MEDIA_PASSES=p beams
+// passes per run (default 2): how a suspected bias is measured beyond the CI
+// runs' noise (tools/bench/random_media_seed.sh); FEMTO_MEDIA_XML=dir also
+// writes each seed's two scenes there, for `femto render`.
 //
 // The tolerance is noise-limited where the camera is inside a medium: every
 // camera ray starts at the same point, so a beam passing at distance rho from
@@ -70,7 +70,7 @@ std::vector<Mean> coarseSums(const std::vector<std::vector<double>>& perRun, int
 }  // namespace
 
 TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
-  const int only = environmentCount("FEMTO_MEDIA_SEED", 0), runs = environmentCount("FEMTO_MEDIA_RUNS", 4);
+  const int only = environmentCount("FEMTO_MEDIA_SEED", 0), runs = std::max(2, environmentCount("FEMTO_MEDIA_RUNS", 4));
   const int first = only > 0 ? only : 1, last = only > 0 ? only : environmentCount("FEMTO_MEDIA_SWEEP", 3);
   const int passes = environmentCount("FEMTO_MEDIA_PASSES", 2);
   const char* xmlDir = std::getenv("FEMTO_MEDIA_XML");
