@@ -75,7 +75,7 @@ double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegm
 double timeRadius(const TimeGrid& grid, double eta) {
   if (!grid.isTransient() || !(grid.binWidth > 0.0) || !(eta > 0.0)) return Infinity;
   // A pair crossing the beam's axis perpendicularly covers a chord 2r, OPL
-  // 2 eta r (ray_beam.h): at most TimeBinFraction of a bin.
+  // 2 eta r (ray_beam.h): at most TimeBinFraction bins.
   return TimeBinFraction * grid.binWidth / (2.0 * eta);
 }
 

@@ -11,12 +11,16 @@
 // bound: the boundary loss (radius_rule.h: the radius keeps it below
 // BoundaryBiasTarget of a segment's estimate; none in unbounded media),
 // and the time footprint of a pair (the time radius keeps a typical pair
-// within half a bin, plus its lateral path: at most half a fine bin's mass
-// on each side of an edge crosses it). Window sums are compared in total and
+// within K = TimeBinFraction fine bins, centred on its arrival to second
+// order: a deposit of half-width h = K/2 bins centred u bins inside an edge
+// sends (h - u) / (2h) of itself across, so f h / 4 of a profile f per bin
+// crosses each side; bounded here by half the mass of the ceil(h) bins on
+// each side, twice that, for the pair's lateral path). Window sums are compared in total and
 // in four coarse bins; the first two fine bins end before the earliest
 // possible arrival and must be exactly empty.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -55,14 +59,20 @@ void expectClosedForm(const MediaScene& m, const std::string& name, int passes, 
     for (size_t k = 0; k < c.size(); ++k) est[k].add(c[k]);
   }
   for (int b = 0; b < bins; ++b) ref[size_t(b / per)] += exact[size_t(b)], ref.back() += exact[size_t(b)];
-  // Half a fine bin's mass on each side of each coarse edge may cross it;
-  // the window's end likewise (nothing moves before its start: causality).
+  // Half the mass of the ceil(K/2) fine bins on each side of each coarse
+  // edge may cross it; the window's end likewise (nothing moves before its
+  // start: causality).
+  const int reach = int(std::ceil(0.5 * beams::TimeBinFraction));
+  auto mass = [&](int from, int to) {  // exact mass of fine bins [from, to), clipped to the window
+    double m = 0.0;
+    for (int b = std::max(from, 0); b < std::min(to, bins); ++b) m += exact[size_t(b)];
+    return m;
+  };
   for (int k = 0; k < coarse; ++k) {
-    const int lo = k * per, hi = lo + per - 1;
-    timeSlack[size_t(k)] = 0.5 * (exact[size_t(lo)] + exact[size_t(hi)] + (lo > 0 ? exact[size_t(lo - 1)] : 0.0) +
-                                  (hi + 1 < bins ? exact[size_t(hi + 1)] : 0.0));
+    const int lo = k * per, hi = lo + per;  // coarse bin k: fine bins [lo, hi)
+    timeSlack[size_t(k)] = 0.5 * (mass(lo - reach, lo + reach) + mass(hi - reach, hi + reach));
   }
-  timeSlack.back() = 0.5 * (exact.back() + exact[size_t(bins - 2)]);
+  timeSlack.back() = 0.5 * mass(bins - 2 * reach, bins);
   const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
   for (size_t k = 0; k < est.size(); ++k) {
     const bool window = k + 1 == est.size();
