@@ -79,13 +79,13 @@ double timeRadius(const TimeGrid& grid, double eta) {
   return TimeBinFraction * grid.binWidth / (2.0 * eta);
 }
 
-double boundaryRadius(const std::vector<ProbeSegment>& probes) {
+double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended) {
   double length = 0.0;
   for (const ProbeSegment& p : probes) length += double(p.segment.tMax);
   if (probes.empty() || !(length > 0.0)) return Infinity;
   const double mean = length / double(probes.size());
   // Relative loss ~ BoundaryLossPerRadius r / mean: at most BoundaryBiasTarget.
-  return BoundaryBiasTarget * mean / BoundaryLossPerRadius;
+  return BoundaryBiasTarget * mean / (BoundaryLossPerRadius * (extended ? BoundaryLossLeft : 1.0));
 }
 
 }  // namespace femto::beams

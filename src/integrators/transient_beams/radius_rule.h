@@ -15,6 +15,7 @@
 
 #include <femto/time/time_grid.h>
 #include <transient_beams/beam.h>
+#include <transient_beams/boundary_extension.h>
 
 namespace femto::beams {
 
@@ -41,8 +42,9 @@ double timeRadius(const TimeGrid& grid, double eta);
 
 /// Largest radius whose boundary loss stays below BoundaryBiasTarget of a
 /// camera segment's estimate, from the probes' mean length in media
-/// (+Infinity without probes).
-double boundaryRadius(const std::vector<ProbeSegment>& probes);
+/// (+Infinity without probes); `extended`: beams are extended past
+/// boundaries (boundary_extension.h), which leaves BoundaryLossLeft of the loss.
+double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended = false);
 
 /// Probe x beam distance evaluations at most (about 20 ms).
 constexpr size_t MaxDistancePairs = 1 << 20;
@@ -62,7 +64,9 @@ constexpr size_t MaxDistancePairs = 1 << 20;
 constexpr double TimeBinFraction = 4.0;
 /// Relative loss per unit r / length at the two ends of a camera segment
 /// (4 / (3 pi), derivation in docs/photon-beams.md) times 2 for light
-/// concentrated near the boundary.
+/// concentrated near the boundary. Beams extended past boundaries leave
+/// BoundaryLossLeft of it (boundary_extension.h: the grazing beams');
+/// photon points are not extended.
 constexpr double BoundaryLossPerRadius = 2.0 * 4.0 / (3.0 * 3.14159265358979323846);
 /// 0.4 %: issue 14 asks for a bias below 0.5 % of the window sum on bounded
 /// media; the rest is left for the interior blur and the time footprint.
