@@ -1,12 +1,8 @@
 // `femto render scene.xml`: load, render with the scene's integrator, write
 // the image, print a one-line summary.
-#include <fcntl.h>
-#include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -17,6 +13,7 @@
 
 #include <femto/base/error.h>
 #include <femto/core/log.h>
+#include <femto/core/resources.h>
 #include <femto/render/integrator.h>
 #include <femto/render/scene.h>
 #include <femto/xml/loader.h>
@@ -53,26 +50,13 @@ fs::path outputPath(const RenderSettings& settings) {
 }
 
 /// The output must be writable before any work starts: a render that fails
-/// only when it writes loses all of it. Makes a missing folder, then probes
-/// the folder with a file of its own, which also catches read-only and pseudo
-/// file systems (/proc) that permission bits do not show. Messages name the
-/// path as the user gave it.
+/// only when it writes loses all of it. A missing folder is made, as the
+/// writers always did (`make render` writes to out/). Messages name the path
+/// as the user gave it.
 void checkOutputWritable(const fs::path& output) {
   if (fs::is_directory(output))
     throw Error(str("-o \"", output.string(), "\" is a folder: give a file name, e.g. \"", (output / "image.exr").string(), "\""));
-  fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  // A missing folder is made, as the writers always did (`make render` writes to out/).
-  std::error_code made;
-  if (!fs::is_directory(folder) && !fs::create_directories(folder, made) && !fs::is_directory(folder))
-    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" cannot be made (",
-                    made ? made.message() : std::string("not a folder"), ")"));
-  fs::path probe = folder / (".femto-write-test-" + std::to_string(::getpid()));
-  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-  if (fd < 0)
-    throw Error(str("cannot write \"", output.string(), "\": the folder \"", folder.string(), "\" is not writable (",
-                    std::strerror(errno), ")"));
-  ::close(fd);
-  ::unlink(probe.c_str());
+  requireWritableFolder(output.parent_path(), output, /*makeMissing=*/true);
 }
 
 LoadOptions loadOptions(const RenderSettings& settings) {

@@ -60,7 +60,8 @@ RenderProcesses::~RenderProcesses() {
 }
 
 void RenderProcesses::abortJob(const std::string& message) const {
-  std::cerr << "error: " << (count_ > 1 ? str("rank ", rank_, " of ", count_, ": ") : std::string()) << message << '\n';
+  // One write, so that mpirun does not splice other ranks' output into the line.
+  std::cerr << str("error: ", count_ > 1 ? str("rank ", rank_, " of ", count_, ": ") : std::string(), message, '\n') << std::flush;
   if (joined_) MPI_Abort(MPI_COMM_WORLD, 1);
   std::exit(1);
 }

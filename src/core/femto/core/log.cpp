@@ -29,8 +29,12 @@ LogLevel logLevel() { return gLevel; }
 void logMessage(LogLevel level, const std::string& message) {
   if (level < gLevel.load()) return;
   static const char* prefix[] = {"debug: ", "", "warning: ", "error: "};
+  // One write per line: std::cerr is unbuffered, and under mpirun (which
+  // forwards each write of each rank as it comes) a line written in pieces
+  // could have another stream's output spliced into it.
+  const std::string line = prefix[int(level)] + message + '\n';
   std::lock_guard<std::mutex> lock(gMutex);
-  std::cerr << prefix[int(level)] << message << '\n';
+  std::cerr.write(line.data(), std::streamsize(line.size()));
 }
 
 }  // namespace femto

@@ -1,6 +1,11 @@
 #include <femto/core/resources.h>
 
+#include <fcntl.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <cstdio>
 #include <fstream>
@@ -53,6 +58,32 @@ void requireDisk(const std::filesystem::path& path, double bytes, const std::str
   if (!free || bytes <= double(*free)) return;
   throw Error(str(what, " needs ", formatBytes(bytes), " on disk, but the file system of \"", path.string(),
                   "\" has only ", formatBytes(double(*free)), " free: ", advice));
+}
+
+void requireWritableFolder(const std::filesystem::path& folder, const std::filesystem::path& output, bool makeMissing) {
+  namespace fs = std::filesystem;
+  auto refuse = [&](const fs::path& where, const std::string& why) {
+    throw Error(str("cannot write \"", output.string(), "\": the folder \"", where.string(), "\" ", why));
+  };
+  fs::path probeIn = folder.empty() ? fs::path(".") : folder;
+  std::error_code ec;
+  if (fs::exists(probeIn, ec) && !fs::is_directory(probeIn, ec)) refuse(probeIn, "is a file, not a folder");
+  if (!fs::is_directory(probeIn, ec)) {
+    if (makeMissing) {
+      if (!fs::create_directories(probeIn, ec) && !fs::is_directory(probeIn))
+        refuse(probeIn, str("cannot be made (", ec ? ec.message() : std::string("not a folder"), ")"));
+    } else {
+      // Made only when written: probe the nearest existing parent instead.
+      while (!probeIn.empty() && !fs::exists(probeIn, ec)) probeIn = probeIn.parent_path();
+      if (probeIn.empty()) probeIn = ".";
+      if (!fs::is_directory(probeIn, ec)) refuse(probeIn, "is a file, not a folder");
+    }
+  }
+  fs::path probe = probeIn / (".femto-write-test-" + std::to_string(::getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) refuse(probeIn, str("is not writable (", std::strerror(errno), ")"));
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 }  // namespace femto

@@ -27,4 +27,11 @@ void requireMemory(double bytes, const std::string& what, const std::string& adv
 /// Throws an Error when `bytes` exceed the free space where `path` goes.
 void requireDisk(const std::filesystem::path& path, double bytes, const std::string& what, const std::string& advice);
 
+/// Throws an Error, naming `output` (the path as the user gave it), unless a
+/// file can be made in `folder`: probes with a file of its own, which also
+/// catches read-only and pseudo file systems (/proc) that permission bits do
+/// not show. `makeMissing`: a missing folder is made first; otherwise it
+/// passes when its nearest existing parent is writable.
+void requireWritableFolder(const std::filesystem::path& folder, const std::filesystem::path& output, bool makeMissing);
+
 }  // namespace femto

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <femto/base/error.h>
+#include <femto/core/resources.h>
 #include <femto/render/rfilter.h>
 
 namespace femto {
@@ -127,6 +128,14 @@ TransientFilm::OutputPaths TransientFilm::outputPaths(const std::filesystem::pat
   base.replace_extension();
   auto with = [&](const std::string& suffix) { return std::filesystem::path(base.string() + suffix); };
   return {with(".npy"), with(".exr"), with("_before.exr"), with("_after.exr"), with("_frames")};
+}
+
+void TransientFilm::checkOutputPath(const std::filesystem::path& path) const {
+  const OutputPaths paths = outputPaths(path);
+  for (const auto* file : {&paths.volume, &paths.steady, &paths.before, &paths.after})
+    if ((file != &paths.volume || writeVolume_) && std::filesystem::is_directory(*file))
+      throw Error(str("cannot write \"", file->string(), "\" (for -o \"", path.string(), "\"): it is a folder"));
+  if (writeFrames_) requireWritableFolder(paths.framesDir, paths.framesDir, /*makeMissing=*/false);
 }
 
 void TransientFilm::develop(const ImageBlock&, const std::filesystem::path&) const {

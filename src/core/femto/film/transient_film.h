@@ -66,6 +66,10 @@ class TransientFilm : public Film {
     std::filesystem::path framesDir;  // <stem>_frames/ with frame_00000.exr, ...
   };
   OutputPaths outputPaths(const std::filesystem::path& path) const;
+  /// Before rendering: none of the files a render to `path` writes may be a
+  /// folder, and the frames folder must be a writable folder (or absent in a
+  /// writable one), so that nothing fails only when the frames are written.
+  void checkOutputPath(const std::filesystem::path& path) const override;
 
   /// A transient film is developed by TransientIntegrator::render; a steady
   /// integrator reaching here is an error (it was checked before rendering).
