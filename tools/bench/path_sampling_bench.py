@@ -7,7 +7,8 @@ docs/BENCHMARKS.md's "transient_path sampling" section.
 
 (a) Equiangular next-event vertices vs free flights only (transient_path's
     `equiangular`) on scenes/cornell-box-fog, single scattering (max_depth 2)
-    and the scene's max_depth 8.
+    and the scene's max_depth 8, there also with and without light-directed
+    vertices (`light_directions`).
 (b) Time windows on the same scene: the full window, its first and its last
     10 %, with `time_gating` off and on.
 ToF-Tungsten's scene has its own script and section:
@@ -90,11 +91,15 @@ def table_equiangular(args, out_dir):
     print("|---|---|---|---|---|---|---|---|")
     for depth in (2, 8):
         base = None
-        for eq in ("false", "true"):
-            rel, e, share, cpu = measure_pairs(FOG, fog_defines(max_depth=depth, equiangular=eq), args.seeds,
+        strategies = [("free flights", dict(equiangular="false")),
+                      ("free flights + equiangular (MIS)", dict(light_directions="false")),
+                      ("free flights + equiangular + light-directed (MIS)", {})]
+        if depth == 2:  # single scattering: no vertex has a second segment for light-directed vertices
+            strategies = strategies[:2]
+        for name, params in strategies:
+            rel, e, share, cpu = measure_pairs(FOG, fog_defines(max_depth=depth, **params), args.seeds,
                                                out_dir, args.threads)
             base = base or e * cpu
-            name = "free flights" if eq == "false" else "free flights + equiangular (MIS)"
             print(f"| {depth} | {name} | {cpu:.2f} | {rel:.3g} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} | "
                   f"{share:.2f} |")
     print()

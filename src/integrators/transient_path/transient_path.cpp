@@ -23,7 +23,7 @@
 // sampling estimates exactly that, so a phase- or BSDF-sampled direction that
 // happens to pass within h (probability ~ h^2) gives an estimate ~ 1/h: its
 // second moment diverges (the fireflies of the peer's fog Cornell box, issue
-// 15: 95 % of the estimates above 500 there were such equiangular vertices on
+// 15: 94 % of the estimates above 500 there were such equiangular vertices on
 // segments after the first vertex, up to 1e4 times their cell's mean). So
 // every scattering vertex also samples one direction around the light with
 // density ~ 1 / sin(angle to the light) (transport/point_directions.h), which
@@ -127,11 +127,15 @@ struct PathState : OpticalPath {
   // (hit distance or Infinity).
   bool equiangular = false;
   float segmentMax = 0.0f;
-  // Whether `ray` left the scattering vertex `prev` (not the camera, not an
-  // index-matched boundary), and that vertex also sampled a light-directed
-  // vertex: then that strategy could have made a vertex on this segment too.
+  // Whether `ray` continues straight from the scattering vertex `prev` (not
+  // from the camera) through index-matched boundaries and homogeneous media
+  // only, and that vertex also sampled a light-directed vertex: then that
+  // strategy could have made a vertex on this segment too. passProbability:
+  // the probability that free flights crossed the segments since `prev`
+  // without scattering (what the light-directed vertex's density is compared with).
   bool segmentFromVertex = false;
   bool prevLightDirected = false;
+  float passProbability = 1.0f;
   // Time gating: the OPL window contributions must reach, and the OPL where
   // the segment starts when it counts toward the OPL (else -Infinity: no gate).
   OplGate gate;
@@ -184,6 +188,7 @@ class TransientPathIntegrator : public TransientIntegrator {
         ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
+        if (!ms.scattered) passSegment(s, hit ? si.t : Infinity, sampler);
       }
       if (ms.scattered) {
         if (!advance(s, ms.p) || s.opl >= horizon) return;
@@ -201,7 +206,6 @@ class TransientPathIntegrator : public TransientIntegrator {
       s.equiangular = false;
       if (isPassThrough(si)) {
         s.crossBoundary(si);
-        s.segmentFromVertex = false;
         ++passThrough;
         continue;
       }
@@ -333,7 +337,22 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// distance densities along the segment are the same for both.
   float lightDirectedRatio(const PathState& s, const Point3f& c) const {
     if (!s.segmentFromVertex || !s.prevLightDirected || s.prev.delta || !(s.prev.bsdfPdf > 0.0f)) return 0.0f;
-    return pdfPointDirection(s.prev.p, c, s.ray.d) / s.prev.bsdfPdf;
+    return pdfPointDirection(s.prev.p, c, s.ray.d) / (s.prev.bsdfPdf * s.passProbability);
+  }
+
+  /// A free flight crossed the medium segment [0, tMax] of s.ray without
+  /// scattering: light-directed vertices follow straight rays through
+  /// homogeneous media only (their transmittance is exact there), so a
+  /// heterogeneous segment ends their reach; a homogeneous one multiplies the
+  /// probability of getting this far (homogeneous.cpp: the average over
+  /// channels of the transmittance).
+  void passSegment(PathState& s, float tMax, Sampler& sampler) const {
+    if (!s.segmentFromVertex) return;
+    if (!s.medium->isHomogeneous()) {
+      s.segmentFromVertex = false;
+      return;
+    }
+    s.passProbability *= s.medium->transmittance(s.ray, tMax, sampler).average();
   }
 
   /// Does the scattering vertex the path is at (depth s.depth, already
@@ -343,37 +362,75 @@ class TransientPathIntegrator : public TransientIntegrator {
     return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth;
   }
 
-  /// The light-directed next-event vertex (see the header): from the
+  /// The light-directed next-event vertices (see the header): from the
   /// scattering vertex `ref` (a surface, or a medium point with zero normal)
-  /// a direction w around a point light (transport/point_directions.h), the
-  /// segment along it to the first surface, an equiangular distance t on it
-  /// and the connection from there to the light: records
-  /// throughput * f(w) / p_light(w) * sigma_s T(t) / p_eq(t) * phase * Le * T_light,
-  /// MIS-weighted against the free-flight and equiangular vertices a
-  /// direction sampled by `scatter` (value and density, as in nextEvent)
-  /// would give on the same segment.
+  /// a direction w around a point light (transport/point_directions.h), then,
+  /// along the straight ray in w through index-matched boundaries, one
+  /// equiangular vertex per homogeneous-medium segment, as the path's own
+  /// segments get (lightDirectedVertex).
   template <typename ScatterFn>
   void nextEventLightDirected(const Scene& scene, const PathState& s, const SurfaceInteraction& ref, Sampler& sampler,
                               RadianceRecorder& recorder, ScatterFn&& scatter) const {
     float uPick = sampler.next1D(), uDistance = sampler.next1D();
     Point2f uDirection = sampler.next2D();
-    const Emitter* emitter = scene.pickEmitter(uPick);
-    Point3f lightPosition;
-    if (!emitter || !emitter->deltaPosition(lightPosition)) return;
-    float lightPdf = 0.0f;
-    Vec3f w = samplePointDirection(ref.p, lightPosition, uDirection, lightPdf);
-    if (!(lightPdf > 0.0f)) return;
-    lightPdf = pdfPointDirection(ref.p, lightPosition, w);  // the density the other strategies' weights use
-    if (!(lightPdf > 0.0f)) return;
-    float vertexPdf = 0.0f;
-    Color3f f = scatter(w, vertexPdf);
+    LightDirected l;
+    l.emitter = scene.pickEmitter(uPick);
+    l.uPick = uPick;
+    if (!l.emitter || !l.emitter->deltaPosition(l.lightPosition)) return;
+    float pdf = 0.0f;
+    Vec3f w = samplePointDirection(ref.p, l.lightPosition, uDirection, pdf);
+    if (!(pdf > 0.0f)) return;
+    l.lightPdf = pdfPointDirection(ref.p, l.lightPosition, w);  // the density the other strategies' weights use
+    if (!(l.lightPdf > 0.0f)) return;
+    Color3f f = scatter(w, l.vertexPdf);
     if (f.isBlack()) return;
+    l.weight = s.throughput * f / l.lightPdf;
     const Medium* medium = mediumAfter(ref, w, s.medium);
-    if (!medium || !medium->isHomogeneous()) return;
     Ray ray = ref.spawnRay(w);
-    SurfaceInteraction hit;
-    float tMax = scene.rayIntersect(ray, hit) ? hit.t : Infinity;
-    EquiangularSegment seg = equiangularToward(ray, tMax, *medium, s.gate, s.opl, lightPosition);
+    Point3f start = ref.p;
+    double opl = s.opl;
+    for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
+      if (medium && !medium->isHomogeneous()) return;
+      SurfaceInteraction hit;
+      bool hitSurface = scene.rayIntersect(ray, hit);
+      float tMax = hitSurface ? hit.t : Infinity;
+      if (medium) {
+        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, crossing == 0 ? uDistance : sampler.next1D(),
+                            sampler, recorder);
+        Color3f tr = medium->transmittance(ray, tMax, sampler);
+        l.weight *= tr;
+        l.passProbability *= tr.average();
+      }
+      if (!hitSurface || !isPassThrough(hit) || l.weight.isBlack()) return;
+      opl += double(medium ? medium->eta() : s.surfaceEta) * distance(start, hit.p);
+      if (opl >= recorder.horizon()) return;
+      medium = mediumAfter(hit, ray.d, medium);
+      start = hit.p;
+      ray = hit.spawnRay(ray.d);
+    }
+  }
+
+  /// What the light-directed vertices of one direction share.
+  struct LightDirected {
+    const Emitter* emitter = nullptr;
+    Point3f lightPosition;
+    float uPick = 0.0f;
+    float lightPdf = 0.0f, vertexPdf = 0.0f;  // densities of the direction: light-directed, the vertex's own sampling
+    Color3f weight;                           // throughput * f(w) / p_light(w) * transmittance of earlier segments
+    float passProbability = 1.0f;             // free flights' probability of crossing the earlier segments
+  };
+
+  /// One light-directed vertex: an equiangular distance t on the segment
+  /// [0, tMax] of `ray` in `medium` (starting at OPL `startOpl`) and the
+  /// connection from there to the light: records
+  /// l.weight * sigma_s T(t) / p_eq(t) * phase * Le * T_light,
+  /// MIS-weighted against the free-flight and equiangular vertices that the
+  /// direction's own sampling would give on the same segment (densities
+  /// vertexPdf * passProbability times p_ff(t) or p_eq(t)).
+  void lightDirectedVertex(const Scene& scene, const PathState& s, const LightDirected& l, const Ray& ray, float tMax,
+                           const Medium& medium, double startOpl, float uDistance, Sampler& sampler,
+                           RadianceRecorder& recorder) const {
+    EquiangularSegment seg = equiangularToward(ray, tMax, medium, s.gate, startOpl, l.lightPosition);
     if (!seg.valid()) return;
     float pdf = 0.0f;
     float t = sampleEquiangular(seg, uDistance, pdf);
@@ -381,23 +438,24 @@ class TransientPathIntegrator : public TransientIntegrator {
     SurfaceInteraction x;  // a medium vertex: zero normal
     x.p = ray(t);
     x.n = Normal3f(0.0f);
-    Color3f vertex = medium->scatteringCoefficient(x.p) * medium->transmittance(ray, t, sampler) / pdf;
+    Color3f vertex = medium.scatteringCoefficient(x.p) * medium.transmittance(ray, t, sampler) / pdf;
     if (vertex.isBlack()) return;
-    double opl = s.opl + double(medium->eta()) * distance(ref.p, x.p);
-    const PhaseFunction& phase = medium->phase();
+    double opl = startOpl + double(medium.eta()) * t;
+    const PhaseFunction& phase = medium.phase();
     if (phase.hasDelay()) opl += phase.sampleDelay(sampler.next1D());
     DirectionSample ds;
-    Color3f Le = emitter->sampleDirection(x.p, Point2f(uPick, 0.5f), ds);
+    Color3f Le = l.emitter->sampleDirection(x.p, Point2f(l.uPick, 0.5f), ds);
     if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
-    Le = Le / scene.emitterPickProbability(emitter);
-    Color3f fx(phase.eval(-w, ds.d));
+    Le = Le / scene.emitterPickProbability(l.emitter);
+    Color3f fx(phase.eval(-ray.d, ds.d));
     if (fx.isBlack()) return;
-    Connection c = connect(scene, x, ds.d, ds.p, ds.dist, medium, s.surfaceEta, sampler);
+    Connection c = connect(scene, x, ds.d, ds.p, ds.dist, &medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
     // Densities of the three strategies for this vertex, divided by the common p_eq(t) / t^2.
-    float weight = powerHeuristic(lightPdf, vertexPdf, vertexPdf * medium->freeFlightPdf(t) / pdf);
-    recorder.addPulsed(opl + c.opl, opl + c.opl,
-                       s.throughput * f / lightPdf * vertex * fx * Le * c.transmittance * weight, emitter->pulse());
+    float own = l.vertexPdf * l.passProbability;
+    float weight = powerHeuristic(l.lightPdf, own, own * medium.freeFlightPdf(t) / pdf);
+    recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
+                       l.emitter->pulse());
   }
 
   /// Next-event estimation from a medium vertex whose distance along the
@@ -471,6 +529,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.ray = Ray(p, wo);
     s.segmentFromVertex = true;
     s.prevLightDirected = lightDirected;
+    s.passProbability = 1.0f;
     return russianRoulette(s, sampler);
   }
 
@@ -504,6 +563,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
     s.segmentFromVertex = true;
     s.prevLightDirected = lightDirected;
+    s.passProbability = 1.0f;
     return russianRoulette(s, sampler);
   }
 

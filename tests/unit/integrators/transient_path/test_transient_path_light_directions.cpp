@@ -25,11 +25,13 @@ namespace {
 struct FogCube {
   float sigmaT, albedo;
   Point3f light;
+  float floorY = -0.95f;  // below -1: outside the cube, a vacuum gap between the two
 };
 
-/// A fog cube (index-matched) holding a diffuse floor and a point light, seen
+/// A fog cube (index-matched) holding a point light and a diffuse floor, seen
 /// from outside: camera paths cross the boundary, scatter on the floor and in
-/// the fog.
+/// the fog. With the floor below the cube, rays from the floor cross a vacuum
+/// gap and the boundary before the fog (light-directed vertices follow them).
 std::shared_ptr<Scene> fogCube(const FogCube& c, bool lightDirections, bool gating) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path"><integer name="max_depth" value="6"/>
@@ -39,7 +41,7 @@ std::shared_ptr<Scene> fogCube(const FogCube& c, bool lightDirections, bool gati
     <rgb name="albedo" value=")", c.albedo, R"("/></medium>
   <shape type="cube"><ref name="interior" id="fog"/></shape>
   <shape type="rectangle">
-    <transform name="to_world"><scale value="0.95"/><rotate x="1" angle="-90"/><translate y="-0.95"/></transform>
+    <transform name="to_world"><scale value="0.95"/><rotate x="1" angle="-90"/><translate y=")", c.floorY, R"("/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf>
   </shape>
   <emitter type="point"><point name="position" x=")", c.light.x, R"(" y=")", c.light.y, R"(" z=")", c.light.z,
@@ -76,6 +78,21 @@ TEST(TransientPathLightDirections, AgreeWithoutThemOnRandomisedFogCubes) {
     const int n = 20000;
     WindowEstimate with = estimateWindow(*fogCube(c, true, false), grid, n, 300 + k, cameraRay);
     WindowEstimate without = estimateWindow(*fogCube(c, false, false), grid, n, 400 + k, cameraRay);
+    ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(with, without);
+  }
+}
+
+TEST(TransientPathLightDirections, AgreeWithoutThemAcrossAVacuumGap) {
+  PCG32 scenes(17, 7);
+  const TimeGrid grid{3.0, 0.5, 8};
+  for (int k = 0; k < 2; ++k) {
+    FogCube c{0.3f + 1.2f * scenes.nextFloat(), 0.5f + 0.45f * scenes.nextFloat(),
+              Point3f(scenes.nextFloat() - 0.5f, -0.8f + 0.3f * scenes.nextFloat(), scenes.nextFloat() - 0.5f), -1.1f};
+    SCOPED_TRACE(str("scene ", k, ": sigma_t ", c.sigmaT, " albedo ", c.albedo, " light ", c.light));
+    const int n = 20000;
+    WindowEstimate with = estimateWindow(*fogCube(c, true, false), grid, n, 900 + k, cameraRay);
+    WindowEstimate without = estimateWindow(*fogCube(c, false, false), grid, n, 950 + k, cameraRay);
     ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
     expectBinsAgree(with, without);
   }
