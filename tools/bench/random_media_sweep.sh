@@ -10,4 +10,4 @@ set -eu
 N=${1:-40}
 BUILD=${2:-build}
 FEMTO_MEDIA_SWEEP=$N FEMTO_PLUGIN_PATH="$BUILD/bin/plugins" \
-  "$BUILD/bin/femto_unit_tests" --gtest_filter='TransientBeamsRandomMedia.*' | grep -E "seed|window|Failure|OK|FAILED"
+  "$BUILD/bin/femto_unit_tests" --gtest_filter='TransientBeamsRandomMedia.*' 2>&1 | grep -E "^seed|window|Failure|OK|FAILED"

@@ -33,6 +33,11 @@ struct Beam {
   int16_t depth = 1;               // photon path segments up to and including this one (1: straight from the emitter)
   uint16_t emitter = 0;            // index in Scene::emitters() of the emitter that sent the photon (its pulse)
   const Medium* medium = nullptr;  // the medium the beam crosses (never null for stored beams)
+  /// The kernel region's extension before the start and past the end, in
+  /// kernel radii, where the beam starts or ends on a boundary of its medium
+  /// (boundary_extension.h; 0: none). Estimates there use the density at
+  /// the end (T_beam at the clamped parameter).
+  float before = 0.0f, after = 0.0f;
 };
 
 /// A camera ray's piece inside one medium: `ray.o + t ray.d`, t in [0, tMax],

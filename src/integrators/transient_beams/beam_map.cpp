@@ -24,6 +24,7 @@
 
 #include <femto/base/error.h>
 #include <femto/math/bbox.h>
+#include <transient_beams/boundary_extension.h>
 
 namespace femto::beams {
 
@@ -180,7 +181,9 @@ uint32_t compact(const std::vector<Node>& sparse, uint32_t at, std::vector<Node>
 }
 
 void checkBeam(const Beam& beam, size_t index) {
-  if (!isFinite(beam.origin) || !isFinite(beam.direction) || !std::isfinite(beam.length) || beam.length < 0.0f)
+  if (!isFinite(beam.origin) || !isFinite(beam.direction) || !std::isfinite(beam.length) || beam.length < 0.0f ||
+      !(beam.before >= 0.0f && beam.before <= MaxBoundaryExtension) ||
+      !(beam.after >= 0.0f && beam.after <= MaxBoundaryExtension))
     throw Error(str("BeamMap: beam ", index, " has origin ", beam.origin, ", direction ", beam.direction,
                     " and length ", beam.length, "; expected finite values and a length >= 0"));
 }
@@ -197,7 +200,8 @@ std::vector<uint32_t> piecesPerBeam(const std::vector<Beam>& beams, float radius
     double total = 0.0;
     for (size_t i = 0; i < beams.size(); ++i) {
       // Capped so a tiny radius cannot ask for billions of pieces.
-      double want = std::min(std::ceil(double(beams[i].length) / pieceLength), 1e6);
+      const double extended = double(beams[i].length) + double(beams[i].before + beams[i].after) * radius;
+      double want = std::min(std::ceil(extended / pieceLength), 1e6);
       counts[i] = uint32_t(std::max(1.0, want));
       total += counts[i];
     }
@@ -239,9 +243,11 @@ BeamMap::BeamMap(std::vector<Beam> beams, float radius, const BeamMapOptions& op
   pieces.reserve(total);
   for (size_t i = 0; i < beams_.size(); ++i) {
     const Beam& beam = beams_[i];
+    // The kernel region, extensions past boundaries included (boundary_extension.h).
+    const float lo = -beam.before * radius, hi = beam.length + beam.after * radius;
     for (uint32_t k = 0; k < counts[i]; ++k) {
-      float t0 = beam.length * float(k) / float(counts[i]);
-      float t1 = k + 1 == counts[i] ? beam.length : beam.length * float(k + 1) / float(counts[i]);
+      float t0 = lo + (hi - lo) * float(k) / float(counts[i]);
+      float t1 = k + 1 == counts[i] ? hi : lo + (hi - lo) * float(k + 1) / float(counts[i]);
       Point3f a = beam.origin + beam.direction * t0, b = beam.origin + beam.direction * t1;
       // Pad by a few ulps of the coordinates: the points in between, as
       // rayBeamIntersect computes them, may round just outside [a, b].

@@ -71,8 +71,8 @@ struct BeamSettings : PathDepthSettings {
   ///  * the density radius: probe segments (camera rays through the film in
   ///    media, radius_probe.h) meet TargetPairHits of `beams` on average,
   ///    so a gather's cost stays bounded whatever the photon count;
-  ///  * the time radius: a pair's OPL footprint stays within half a bin of
-  ///    `grid` (none for steady films);
+  ///  * the time radius: a pair's OPL footprint stays within TimeBinFraction
+  ///    bins of `grid` (none for steady films);
   ///  * the boundary radius: the kernel's loss where beams end stays below
   ///    BoundaryBiasTarget of a camera segment's estimate.
   /// Without probes (no medium seen straight from the camera) the density
@@ -92,11 +92,17 @@ struct BeamSettings : PathDepthSettings {
   /// at most all photons. Unchanged otherwise.
   BeamSettings withBeamsForRadius(const DerivedRadius& derived) const;
 
-  /// Pairs per camera segment the density radius aims at: enough that
-  /// a gather is worth its query (a camera segment's BVH traversal costs
-  /// about as much as tens of pair estimates), few enough that the kernel
-  /// stays narrow (docs/BENCHMARKS.md, "transient_beams cost").
-  static constexpr double TargetPairHits = 25.0;
+  /// Pairs per camera segment the density radius aims at, from the balance
+  /// of a segment's error per unit cost (docs/photon-beams.md, "Derived beam
+  /// radius"): the beams' part of the variance falls as 1/h (h pairs), the
+  /// camera side's (pixel footprint, surfaces) does not depend on h; a query
+  /// costs C0 + c h with C0 (traversal, the rest of the camera sample) about
+  /// 30 pairs' worth; the kernel bias grows as r^2 ~ h^2. So h well above
+  /// C0 / c, until the beams' variance is below the camera side's: measured
+  /// by radius sweeps (tools/bench/beams_radius_sweep.py) at 150-350 pairs on
+  /// the large medium and the ToF-Tungsten port (the box and the fog box are
+  /// bound by the boundary radius first). 25 (the earlier rule) lost 2-5x.
+  static constexpr double TargetPairHits = 300.0;
 
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)

@@ -14,6 +14,7 @@
 #include <femto/transport/optical_path.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/beam_roulette.h>
+#include <transient_beams/boundary_extension.h>
 #include <transient_beams/medium_extent.h>
 
 namespace femto::beams {
@@ -22,7 +23,7 @@ namespace {
 /// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
 constexpr size_t MaxEmitters = 65535;
 constexpr int MaxPhotonDepth = 32767;
-static_assert(sizeof(Beam) <= 64, "a beam should fit a cache line");
+static_assert(sizeof(Beam) <= 72, "a beam should stay about a cache line");
 /// Photons per parallel work item: outputs are concatenated in item order.
 constexpr uint64_t PhotonsPerBlock = 1024;
 
@@ -96,6 +97,7 @@ struct PhotonTracer::Photon : OpticalPath {
   bool scattered = false;            // scattered in a medium or off a non-specular surface
   bool indirect = false;             // scattered, or bounced off a specular surface
   bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
+  float startExtension = 0.0f;       // the next beam's Beam::before: it starts on a boundary (boundary_extension.h)
 };
 
 void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
@@ -125,7 +127,10 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     }
     if (!hit || !reachSurface(ph, si)) return;
     if (isPassThrough(si)) {
+      const Medium* from = ph.medium;
       ph.crossBoundary(si);
+      // Entering a medium through its boundary: the next beam starts there.
+      ph.startExtension = ph.medium && ph.medium != from ? boundaryExtension(si.n, ph.ray.d) : 0.0f;
       ++passThrough;
       continue;
     }
@@ -171,12 +176,18 @@ MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceIntera
   const float rouletteLength = roulette.active() ? roulette.sampleLength(sampler.next1D()) : Infinity;
   if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
     // From the exact vertex, so the beam's OPL and geometry agree.
-    float length = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
-    length = std::min(length, rouletteLength);
-    if (length > 0.0f && std::isfinite(length))
-      beams.push_back(
-          Beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium});
+    const float toSurface = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
+    const float length = std::min(toSurface, rouletteLength);
+    if (length > 0.0f && std::isfinite(length)) {
+      Beam beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium};
+      // Ending on a boundary of its medium (not by the roulette): extended past it.
+      beam.before = ph.startExtension;
+      if (hit && !(rouletteLength < toSurface) && !sameMediumAcross(si, ph.ray.d, ph.medium))
+        beam.after = boundaryExtension(si.n, ph.ray.d);
+      beams.push_back(beam);
+    }
   }
+  ph.startExtension = 0.0f;
   MediumSample ms = ph.medium->sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
   arriving = ph.power;
   ph.power *= ms.weight;
@@ -232,6 +243,8 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   Vec3f wo = si.toWorld(bs.wo);
   ph.power *= weight;
   ph.leaveSurface(si, wo, bs.eta);
+  // Leaving a boundary of the medium it is now in: the next beam starts there.
+  ph.startExtension = ph.medium && !sameMediumAcross(si, -wo, ph.medium) ? boundaryExtension(si.n, wo) : 0.0f;
   if (bs.sampledFlags & BSDFFlags::Delta)
     ph.indirect = true;
   else

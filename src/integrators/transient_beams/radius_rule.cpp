@@ -75,17 +75,17 @@ double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegm
 double timeRadius(const TimeGrid& grid, double eta) {
   if (!grid.isTransient() || !(grid.binWidth > 0.0) || !(eta > 0.0)) return Infinity;
   // A pair crossing the beam's axis perpendicularly covers a chord 2r, OPL
-  // 2 eta r (ray_beam.h): at most TimeBinFraction of a bin.
+  // 2 eta r (ray_beam.h): at most TimeBinFraction bins.
   return TimeBinFraction * grid.binWidth / (2.0 * eta);
 }
 
-double boundaryRadius(const std::vector<ProbeSegment>& probes) {
+double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended) {
   double length = 0.0;
   for (const ProbeSegment& p : probes) length += double(p.segment.tMax);
   if (probes.empty() || !(length > 0.0)) return Infinity;
   const double mean = length / double(probes.size());
   // Relative loss ~ BoundaryLossPerRadius r / mean: at most BoundaryBiasTarget.
-  return BoundaryBiasTarget * mean / BoundaryLossPerRadius;
+  return BoundaryBiasTarget * mean / (BoundaryLossPerRadius * (extended ? BoundaryLossLeft : 1.0));
 }
 
 }  // namespace femto::beams

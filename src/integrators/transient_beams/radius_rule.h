@@ -6,7 +6,8 @@
 //    on average, counted on probe segments (camera rays through the film,
 //    radius_probe.h) against the beams actually traced: a k-nearest estimate;
 //  * time: a pair's OPL footprint (about 2 eta r across the beam, ray_beam.h)
-//    stays within a film bin;
+//    stays within TimeBinFraction film bins, so that the blur it adds to the
+//    time profile stays below a bin's own (derivation at the constant);
 //  * boundary bias: the kernel's loss where beams end (medium boundaries,
 //    surfaces in media) stays below 0.4 % of what a camera segment gathers.
 #include <limits>
@@ -14,6 +15,7 @@
 
 #include <femto/time/time_grid.h>
 #include <transient_beams/beam.h>
+#include <transient_beams/boundary_extension.h>
 
 namespace femto::beams {
 
@@ -34,24 +36,37 @@ double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Poi
 /// there are no probes. Deterministic.
 double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs);
 
-/// Largest radius whose pair footprint stays within TimeBinFraction of a bin
+/// Largest radius whose pair footprint stays within TimeBinFraction bins
 /// of `grid` at refractive index `eta` (+Infinity for steady films).
 double timeRadius(const TimeGrid& grid, double eta);
 
 /// Largest radius whose boundary loss stays below BoundaryBiasTarget of a
 /// camera segment's estimate, from the probes' mean length in media
-/// (+Infinity without probes).
-double boundaryRadius(const std::vector<ProbeSegment>& probes);
+/// (+Infinity without probes); `extended`: beams are extended past
+/// boundaries (boundary_extension.h), which leaves BoundaryLossLeft of the loss.
+double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended = false);
 
 /// Probe x beam distance evaluations at most (about 20 ms).
 constexpr size_t MaxDistancePairs = 1 << 20;
-/// A perpendicular pair through the beam's axis spreads over 2 eta r: at
-/// most one bin (on the fog Cornell box at 1024 bins about the density
-/// radius, whose time blur the benchmark's reference check did not see).
-constexpr double TimeBinFraction = 1.0;
+/// A perpendicular pair at lateral offset d spreads its energy uniformly
+/// over an OPL width w = 2 eta sqrt(r^2 - d^2) centred (to second order) on
+/// the arrival through the beam's axis. Averaged over d in [-r, r] that is a
+/// blur of the time profile with variance E[w^2] / 12 = (2/9) eta^2 r^2; a
+/// smooth profile f is biased by (sigma^2 / 2) f'' (second order: the
+/// window sum is unchanged, and causality holds by construction, ray_beam.h).
+/// With 2 eta r = K bins, sigma = K / sqrt(18) bins: K = 4 gives 0.94 bins,
+/// about the standard deviation of a 3.3-bin box, so a feature of time
+/// scale tau (|f''/f| ~ 1 / tau^2) is off by at most sigma^2 / (2 tau^2) <
+/// 0.5 % once tau >= 10 sigma ~ 9.4 bins, and the blur shrinks with the
+/// radius per pass (r_i ~ i^(alpha - 1)). K = 1 (the earlier rule) made the
+/// radius 4-12x smaller than the efficient one on the media suite
+/// (docs/photon-beams.md, "Derived beam radius": radius sweeps).
+constexpr double TimeBinFraction = 4.0;
 /// Relative loss per unit r / length at the two ends of a camera segment
 /// (4 / (3 pi), derivation in docs/photon-beams.md) times 2 for light
-/// concentrated near the boundary.
+/// concentrated near the boundary. Beams extended past boundaries leave
+/// BoundaryLossLeft of it (boundary_extension.h: the grazing beams');
+/// photon points are not extended.
 constexpr double BoundaryLossPerRadius = 2.0 * 4.0 / (3.0 * 3.14159265358979323846);
 /// 0.4 %: issue 14 asks for a bias below 0.5 % of the window sum on bounded
 /// media; the rest is left for the interior blur and the time footprint.

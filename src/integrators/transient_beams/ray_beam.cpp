@@ -57,14 +57,17 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   const float disc = a * r2 - dot(m, m);
   if (!parallel && !(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
 
-  // Slab between the cap planes, 0 <= s(t) <= length, intersected with [0, tMax].
+  // Slab between the cap planes, sBegin <= s(t) <= sEnd, intersected with
+  // [0, tMax]: the beam [0, length] plus its extensions past boundaries
+  // (boundary_extension.h).
+  const float sBegin = -beam.before * r, sEnd = length + beam.after * r;
   float lo = 0.0f, hi = tMax;
   if (std::abs(cosTheta) > Perpendicular) {
     const float invCos = 1.0f / cosTheta;
-    const float t0 = -s0 * invCos, t1 = (length - s0) * invCos;
+    const float t0 = (sBegin - s0) * invCos, t1 = (sEnd - s0) * invCos;
     lo = std::max(lo, std::min(t0, t1));
     hi = std::min(hi, std::max(t0, t1));
-  } else if (!(s0 >= 0.0f && s0 <= length)) {
+  } else if (!(s0 >= sBegin && s0 <= sEnd)) {
     return false;
   }
   if (!(hi > lo)) return false;

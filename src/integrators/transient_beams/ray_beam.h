@@ -22,7 +22,9 @@
 //    by the planes through the beam's ends perpendicular to it. The segment's
 //    overlap with it is [tRayBegin, tRayEnd] = chord of the infinite cylinder
 //    (|x(t) - axis| < r, a quadratic in t) clipped to the slab
-//    0 <= s(t) = (x(t) - b).v <= length and to [0, tMax].
+//    -before r <= s(t) = (x(t) - b).v <= length + after r (the beam's
+//    extensions past boundaries, boundary_extension.h; 0 for most beams)
+//    and to [0, tMax].
 //  * OPL along the overlap: OPL(t) = segment.eta t + beam.eta s(t), linear in
 //    t with rate segment.eta + beam.eta cos(theta). With equal indices a pair
 //    whose beam travels toward the camera (w = -v, "anti-parallel") keeps the

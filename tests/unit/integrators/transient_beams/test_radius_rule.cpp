@@ -63,6 +63,9 @@ TEST(RadiusRule, TimeAndBoundaryRadiiFollowTheirFormulas) {
   std::vector<ProbeSegment> probes(2);
   probes[0].segment.tMax = 1.0f, probes[1].segment.tMax = 3.0f;
   EXPECT_NEAR(boundaryRadius(probes), BoundaryBiasTarget * 2.0 / BoundaryLossPerRadius, 1e-12);
+  EXPECT_NEAR(boundaryRadius(probes, true), BoundaryBiasTarget * 2.0 / (BoundaryLossPerRadius * BoundaryLossLeft),
+              1e-12)
+      << "beams extended past boundaries leave BoundaryLossLeft of the loss";
   EXPECT_FALSE(std::isfinite(boundaryRadius({})));
 }
 

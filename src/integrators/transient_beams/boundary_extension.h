@@ -1,0 +1,55 @@
+#pragma once
+// Kernel extensions of beams past the boundaries where they end or start
+// (docs/photon-beams.md, "Boundary extension"): the ray x beam estimate is
+// the beam density blurred over a disc of radius r across each beam; within
+// r of a boundary part of the disc lies behind it, where no beam runs, so
+// the estimate loses, to first order in r, 2 r / (3 pi) of the density per
+// end of a camera segment (radius_rule.h). A beam that ends on a boundary
+// is continued straight past it, and a beam that leaves one straight before
+// it, by r / |cos theta_n| (theta_n: its angle to the surface normal), i.e.
+// to depth r behind the boundary, with the density it has at the boundary
+// (T_beam is evaluated at the clamped beam parameter, ray_beam.cpp). Behind
+// a planar boundary the extensions then hold exactly the beams the disc
+// misses, up to the density's gradient: the loss becomes second order.
+// Only camera segments of the beam's medium gather (camera_tracer.cpp), so
+// the extension counts only where the disc of such a segment reaches past
+// the boundary. Not extended: boundaries with the same medium on both sides
+// (the disc sees real beams there), beams ended by Russian roulette or the
+// horizon, beams from emitters (area lights on a boundary keep a first-order
+// loss). The timing stays causal: a pair's OPL is measured from the beam's
+// start (ray_beam.h), wherever along the extension it falls.
+#include <algorithm>
+#include <cmath>
+
+#include <femto/math/vector.h>
+
+namespace femto {
+struct SurfaceInteraction;
+class Medium;
+}  // namespace femto
+
+namespace femto::beams {
+
+/// Longest extension, in kernel radii: grazing beams (|cos theta_n| below
+/// 1 / MaxBoundaryExtension) reach less than r deep. Their share of the
+/// first-order loss (a beam's disc reaches r sin theta_n past the boundary,
+/// so the loss per direction goes as sin theta_n; isotropic beams) is
+/// int_0^(1/M) sqrt(1 - mu^2) dmu / (pi / 4) <= 4 / (pi M): 8 % for M = 16.
+constexpr float MaxBoundaryExtension = 16.0f;
+/// The part of the first-order boundary loss the extension leaves (above).
+constexpr double BoundaryLossLeft = 4.0 / (3.14159265358979323846 * MaxBoundaryExtension);
+
+/// Extension in kernel radii of a beam along unit `d` through a boundary
+/// of normal `n`: 1 / |cos theta_n|, at most MaxBoundaryExtension.
+inline float boundaryExtension(const Normal3f& n, const Vec3f& d) {
+  const float c = std::abs(dot(n, d)) / std::max(length(n), 1e-30f);
+  return c * MaxBoundaryExtension > 1.0f ? 1.0f / c : MaxBoundaryExtension;
+}
+
+/// Is the medium on the far side of `si`, seen along `across`, the same as
+/// `medium`? Shapes that declare media say so; a shape without media is
+/// transparent to them when it is a pass-through (index-matched) boundary
+/// and a solid (nothing behind its surface) otherwise.
+bool sameMediumAcross(const SurfaceInteraction& si, const Vec3f& across, const Medium* medium);
+
+}  // namespace femto::beams
