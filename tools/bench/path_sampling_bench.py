@@ -2,17 +2,17 @@
 """transient_path's distance sampling, measured: prints the Markdown of
 docs/BENCHMARKS.md's "transient_path sampling" section.
 
-  tools/bench/path_sampling_bench.py [--peer-spp 16,64,256,1024] [--seeds 3] \
+  tools/bench/path_sampling_bench.py [--seeds 3] \
       | tools/bench/replace_doc_section.py docs/BENCHMARKS.md path-sampling
 
 (a) Equiangular next-event vertices vs free flights only (transient_path's
     `equiangular`) on scenes/cornell-box-fog, single scattering (max_depth 2)
-    and the scene's max_depth 8.
+    and the scene's max_depth 8, there also with and without light-directed
+    vertices (`light_directions`).
 (b) Time windows on the same scene: the full window, its first and its last
     10 %, with `time_gating` off and on.
-(c) femto's transient_path against ToF-Tungsten's path tracer on
-    ../shared/scenes/tof-tungsten-cbox-trans (skipped when absent), scored
-    against its 8192-spp reference.npy with the README's relMSE.
+ToF-Tungsten's scene has its own script and section:
+tools/compare/tof_peer_path.py ("transient_path on the peer's scene").
 
 Error in (a) and (b) is estimated without a reference: two renders with
 independent seeds differ by twice the variance (both estimators are
@@ -36,7 +36,6 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FEMTO = os.path.join(ROOT, "build", "bin", "femto")
 FOG = os.path.join(ROOT, "scenes", "cornell-box-fog", "scene.xml")
-PEER = os.path.join(ROOT, "..", "shared", "scenes", "tof-tungsten-cbox-trans")
 
 
 def render(scene, defines, seed, out_dir, threads):
@@ -50,11 +49,6 @@ def render(scene, defines, seed, out_dir, threads):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     return np.load(out[:-4] + ".npy").astype(np.float64), cpu
-
-
-def rel_mse(x, ref):
-    """The peer README's relMSE: mean (x - ref)^2 / (ref^2 + 0.01 mean(ref)^2)."""
-    return float(np.mean((x - ref) ** 2 / (ref ** 2 + 0.01 * np.mean(ref) ** 2)))
 
 
 def pairwise_rel_mse(a, b):
@@ -97,11 +91,15 @@ def table_equiangular(args, out_dir):
     print("|---|---|---|---|---|---|---|---|")
     for depth in (2, 8):
         base = None
-        for eq in ("false", "true"):
-            rel, e, share, cpu = measure_pairs(FOG, fog_defines(max_depth=depth, equiangular=eq), args.seeds,
+        strategies = [("free flights", dict(equiangular="false")),
+                      ("free flights + equiangular (MIS)", dict(light_directions="false")),
+                      ("free flights + equiangular + light-directed (MIS)", {})]
+        if depth == 2:  # single scattering: no vertex has a second segment for light-directed vertices
+            strategies = strategies[:2]
+        for name, params in strategies:
+            rel, e, share, cpu = measure_pairs(FOG, fog_defines(max_depth=depth, **params), args.seeds,
                                                out_dir, args.threads)
             base = base or e * cpu
-            name = "free flights" if eq == "false" else "free flights + equiangular (MIS)"
             print(f"| {depth} | {name} | {cpu:.2f} | {rel:.3g} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} | "
                   f"{share:.2f} |")
     print()
@@ -133,29 +131,6 @@ def table_windows(args, out_dir):
     print()
 
 
-def table_peer(args, out_dir):
-    reference = os.path.join(PEER, "reference.npy")
-    if not os.path.exists(reference):
-        print("### (c) ToF-Tungsten's scene: skipped (../shared/scenes/tof-tungsten-cbox-trans is not present)\n")
-        return
-    ref = np.load(reference).astype(np.float64)
-    peer = {16: (2.1, 91.3), 64: (7.6, 22.5), 256: (30.0, 5.58), 1024: (113.0, 1.26)}
-    print("### (c) femto transient_path vs ToF-Tungsten's path tracer (its transient Cornell box in fog)\n")
-    print("128×128×200 bins, against ToF-Tungsten's 8192-spp reference.npy with its README's relMSE; "
-          f"seed 1. ToF-Tungsten's figures are its README's (same machine type). Budgets: {args.peer_spp}.\n")
-    print("| spp | femto CPU s | femto relMSE | femto relMSE × CPU | worst 1 % cells' share | ToF-Tungsten relMSE × CPU | "
-          "ratio ToF-Tungsten / femto |")
-    print("|---|---|---|---|---|---|---|")
-    for spp in args.peer_spp:
-        x, cpu = render(os.path.join(PEER, "scene.xml"), {"spp": spp}, 1, out_dir, args.threads)
-        e = rel_mse(x, ref)
-        theirs = peer[spp][0] * peer[spp][1] if spp in peer else None
-        t = f"{theirs:.0f}" if theirs else "-"
-        r = f"{theirs / (e * cpu):.2f}" if theirs else "-"
-        print(f"| {spp} | {cpu:.1f} | {e:.3g} | {e * cpu:.3g} | {worst_share(x, ref):.2f} | {t} | {r} |")
-    print()
-
-
 def cpu_model():
     out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
     return next((l.split(":", 1)[1].strip() for l in out.splitlines() if l.startswith("Model name")), "unknown CPU")
@@ -170,27 +145,22 @@ def commit():
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=3, help="seed pairs for (a) and (b)")
-    parser.add_argument("--peer-spp", default="16,64,256,1024", help="budgets of (c)")
     parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--only", default="abc", help="which tables")
+    parser.add_argument("--only", default="ab", help="which tables")
     args = parser.parse_args()
-    args.peer_spp = [int(s) for s in args.peer_spp.split(",")]
     load_start = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="path-sampling-") as out_dir:
-        print("## transient_path sampling: equiangular, time windows, the peer's scene\n")
+        print("## transient_path sampling: equiangular, time windows\n")
         print("Generated by `tools/bench/path_sampling_bench.py` — do not edit this section by hand; rerun the script.\n")
         print(f"- machine: {cpu_model()}, {os.cpu_count()} logical CPUs; {args.threads} render threads")
         print(f"- commit: {commit()}")
-        print(f"- command: `tools/bench/path_sampling_bench.py --seeds {args.seeds} --peer-spp "
-              f"{','.join(map(str, args.peer_spp))}`")
+        print(f"- command: `tools/bench/path_sampling_bench.py --seeds {args.seeds}`")
         print("- CPU = user + system seconds of the whole `femto render` process (loading, rendering, writing); "
               "the machine is shared, so wall time is not quoted\n")
         if "a" in args.only:
             table_equiangular(args, out_dir)
         if "b" in args.only:
             table_windows(args, out_dir)
-        if "c" in args.only:
-            table_peer(args, out_dir)
         load_end = os.getloadavg()
         print("Load average (1, 5, 15 min) at the start: " + " ".join(f"{x:.2f}" for x in load_start) +
               "; at the end: " + " ".join(f"{x:.2f}" for x in load_end) + ".")

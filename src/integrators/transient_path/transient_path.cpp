@@ -17,6 +17,22 @@
 // it, next-event estimates from free-flight vertices near a point light have
 // infinite variance (fireflies ~ 1/r^2).
 //
+// Light-directed vertices (light_directions = true): that still leaves rays
+// that pass close to the light. The single-scattered radiance arriving along
+// a ray that passes at distance h from a point light is ~ 1/h, and equiangular
+// sampling estimates exactly that, so a phase- or BSDF-sampled direction that
+// happens to pass within h (probability ~ h^2) gives an estimate ~ 1/h: its
+// second moment diverges (the fireflies of the peer's fog Cornell box, issue
+// 15: 94 % of the estimates above 500 there were such equiangular vertices on
+// segments after the first vertex, up to 1e4 times their cell's mean). So
+// every scattering vertex also samples one direction around the light with
+// density ~ 1 / sin(angle to the light) (transport/point_directions.h), which
+// cancels the 1/h, and an equiangular vertex along it; the three ways to
+// reach a medium vertex that connects to the light (free flight, equiangular
+// along the sampled direction, equiangular along the light-directed one) are
+// combined by the power heuristic over their densities in the same measure
+// (the direction densities at the vertex times the distance densities).
+//
 // Time gating (time_gating = true; temporal importance sampling): the
 // equiangular vertex is sampled only over the part of its segment from which
 // a straight connection to the light arrives inside the film's window
@@ -59,6 +75,7 @@
 // | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
 // | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
 // | equiangular     | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
+// | light_directions | boolean | true   | a second next-event vertex per scattering vertex, along a direction sampled around point lights (needs equiangular) | - |
 // | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time window | - |
 // | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    |
 // | temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
@@ -82,6 +99,7 @@
 #include <femto/transport/direct_lighting.h>
 #include <femto/transport/equiangular.h>
 #include <femto/transport/optical_path.h>
+#include <femto/transport/point_directions.h>
 #include <femto/transport/time_gate.h>
 #include <femto/transport/transient_emission.h>
 #include <femto/render/medium.h>
@@ -109,6 +127,15 @@ struct PathState : OpticalPath {
   // (hit distance or Infinity).
   bool equiangular = false;
   float segmentMax = 0.0f;
+  // Whether `ray` continues straight from the scattering vertex `prev` (not
+  // from the camera) through index-matched boundaries and homogeneous media
+  // only, and that vertex also sampled a light-directed vertex: then that
+  // strategy could have made a vertex on this segment too. passProbability:
+  // the probability that free flights crossed the segments since `prev`
+  // without scattering (what the light-directed vertex's density is compared with).
+  bool segmentFromVertex = false;
+  bool prevLightDirected = false;
+  float passProbability = 1.0f;
   // Time gating: the OPL window contributions must reach, and the OPL where
   // the segment starts when it counts toward the OPL (else -Infinity: no gate).
   OplGate gate;
@@ -129,6 +156,7 @@ class TransientPathIntegrator : public TransientIntegrator {
         hideEmitters_(props.getBool("hide_emitters", false)),
         observerTime_(props.getBool("observer_time", true)),
         equiangular_(props.getBool("equiangular", true)),
+        lightDirections_(props.getBool("light_directions", true)),
         timeGating_(props.getBool("time_gating", false)) {
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
@@ -160,6 +188,7 @@ class TransientPathIntegrator : public TransientIntegrator {
         ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
+        if (!ms.scattered) passSegment(s, hit ? si.t : Infinity, sampler);
       }
       if (ms.scattered) {
         if (!advance(s, ms.p) || s.opl >= horizon) return;
@@ -188,6 +217,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   std::string toString() const override {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
                ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
+               ", light_directions=", lightDirections_ ? "true" : "false",
                ", time_gating=", timeGating_ ? "true" : "false",
                "]");
   }
@@ -236,9 +266,11 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (c.transmittance.isBlack()) return;
     float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
     Point3f lightPosition;
-    if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition))
-      weight = powerHeuristic(1.0f, s.medium->freeFlightPdf(segmentT), 1.0f,
-                              pdfEquiangular(equiangularToward(s, lightPosition), segmentT));
+    if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
+      float equiangular = pdfEquiangular(equiangularToward(s, lightPosition), segmentT);
+      weight = powerHeuristic(s.medium->freeFlightPdf(segmentT), equiangular,
+                              equiangular * lightDirectedRatio(s, lightPosition));
+    }
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
                        ds.emitter->pulse());
   }
@@ -285,13 +317,145 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// delays and other media make some land outside, which costs variance,
   /// not bias: both strategies use this density).
   EquiangularSegment equiangularToward(const PathState& s, const Point3f& c) const {
-    if (!s.gate.gates() || !std::isfinite(s.segmentStartOpl))
-      return equiangularSegment(s.ray.o, s.ray.d, s.segmentMax, c);
-    double eta = s.medium->eta();
-    DistanceRange range = distancesArrivingWithin(s.ray.o, s.ray.d, c, (s.gate.start - s.segmentStartOpl) / eta,
-                                                  (s.gate.end - s.segmentStartOpl) / eta);
-    float tStart = float(std::max(range.t0, 0.0)), tEnd = float(std::min(range.t1, double(s.segmentMax)));
-    return equiangularSegment(s.ray.o, s.ray.d, tStart, tEnd, c);
+    return equiangularToward(s.ray, s.segmentMax, *s.medium, s.gate, s.segmentStartOpl, c);
+  }
+  /// The same for segment [0, tMax] of `ray` in `medium`, starting at OPL `startOpl`.
+  static EquiangularSegment equiangularToward(const Ray& ray, float tMax, const Medium& medium, const OplGate& gate,
+                                              double startOpl, const Point3f& c) {
+    if (!gate.gates() || !std::isfinite(startOpl)) return equiangularSegment(ray.o, ray.d, tMax, c);
+    double eta = medium.eta();
+    DistanceRange range = distancesArrivingWithin(ray.o, ray.d, c, (gate.start - startOpl) / eta,
+                                                  (gate.end - startOpl) / eta);
+    float tStart = float(std::max(range.t0, 0.0)), tEnd = float(std::min(range.t1, double(tMax)));
+    return equiangularSegment(ray.o, ray.d, tStart, tEnd, c);
+  }
+
+  /// p_light(w) / p_vertex(w) for the current segment's direction w and a
+  /// light at `c`: the light-directed strategy's direction density relative
+  /// to that of the direction the vertex sampled (0 when the segment does
+  /// not leave a vertex that ran it, or left it by a delta component). The
+  /// distance densities along the segment are the same for both.
+  float lightDirectedRatio(const PathState& s, const Point3f& c) const {
+    if (!s.segmentFromVertex || !s.prevLightDirected || s.prev.delta || !(s.prev.bsdfPdf > 0.0f)) return 0.0f;
+    return pdfPointDirection(s.prev.p, c, s.ray.d) / (s.prev.bsdfPdf * s.passProbability);
+  }
+
+  /// A free flight crossed the medium segment [0, tMax] of s.ray without
+  /// scattering: light-directed vertices follow straight rays through
+  /// homogeneous media only (their transmittance is exact there), so a
+  /// heterogeneous segment ends their reach; a homogeneous one multiplies the
+  /// probability of getting this far (homogeneous.cpp: the average over
+  /// channels of the transmittance).
+  void passSegment(PathState& s, float tMax, Sampler& sampler) const {
+    if (!s.segmentFromVertex) return;
+    if (!s.medium->isHomogeneous()) {
+      s.segmentFromVertex = false;
+      return;
+    }
+    s.passProbability *= s.medium->transmittance(s.ray, tMax, sampler).average();
+  }
+
+  /// Does the scattering vertex the path is at (depth s.depth, already
+  /// counted) sample a light-directed vertex? Only toward a medium vertex
+  /// that may still connect to a light.
+  bool runsLightDirected(const PathState& s) const {
+    return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth;
+  }
+
+  /// The light-directed next-event vertices (see the header): from the
+  /// scattering vertex `ref` (a surface, or a medium point with zero normal)
+  /// a direction w around a point light (transport/point_directions.h), then,
+  /// along the straight ray in w through index-matched boundaries, one
+  /// equiangular vertex per homogeneous-medium segment, as the path's own
+  /// segments get (lightDirectedVertex).
+  template <typename ScatterFn>
+  void nextEventLightDirected(const Scene& scene, const PathState& s, const SurfaceInteraction& ref, Sampler& sampler,
+                              RadianceRecorder& recorder, ScatterFn&& scatter) const {
+    float uPick = sampler.next1D(), uDistance = sampler.next1D();
+    Point2f uDirection = sampler.next2D();
+    LightDirected l;
+    l.emitter = scene.pickEmitter(uPick);
+    l.uPick = uPick;
+    if (!l.emitter || !l.emitter->deltaPosition(l.lightPosition)) return;
+    float pdf = 0.0f;
+    Vec3f w = samplePointDirection(ref.p, l.lightPosition, uDirection, pdf);
+    if (!(pdf > 0.0f)) return;
+    l.lightPdf = pdfPointDirection(ref.p, l.lightPosition, w);  // the density the other strategies' weights use
+    if (!(l.lightPdf > 0.0f)) return;
+    Color3f f = scatter(w, l.vertexPdf);
+    if (f.isBlack()) return;
+    l.weight = s.throughput * f / l.lightPdf;
+    const Medium* medium = mediumAfter(ref, w, s.medium);
+    Ray ray = ref.spawnRay(w);
+    Point3f start = ref.p;
+    double opl = s.opl;
+    for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
+      if (medium && !medium->isHomogeneous()) return;
+      SurfaceInteraction hit;
+      bool hitSurface = scene.rayIntersect(ray, hit);
+      float tMax = hitSurface ? hit.t : Infinity;
+      if (medium) {
+        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, crossing == 0 ? uDistance : sampler.next1D(),
+                            sampler, recorder);
+        Color3f tr = medium->transmittance(ray, tMax, sampler);
+        l.weight *= tr;
+        l.passProbability *= tr.average();
+      }
+      if (!hitSurface || !isPassThrough(hit) || l.weight.isBlack()) return;
+      opl += double(medium ? medium->eta() : s.surfaceEta) * distance(start, hit.p);
+      if (opl >= recorder.horizon()) return;
+      medium = mediumAfter(hit, ray.d, medium);
+      start = hit.p;
+      ray = hit.spawnRay(ray.d);
+    }
+  }
+
+  /// What the light-directed vertices of one direction share.
+  struct LightDirected {
+    const Emitter* emitter = nullptr;
+    Point3f lightPosition;
+    float uPick = 0.0f;
+    float lightPdf = 0.0f, vertexPdf = 0.0f;  // densities of the direction: light-directed, the vertex's own sampling
+    Color3f weight;                           // throughput * f(w) / p_light(w) * transmittance of earlier segments
+    float passProbability = 1.0f;             // free flights' probability of crossing the earlier segments
+  };
+
+  /// One light-directed vertex: an equiangular distance t on the segment
+  /// [0, tMax] of `ray` in `medium` (starting at OPL `startOpl`) and the
+  /// connection from there to the light: records
+  /// l.weight * sigma_s T(t) / p_eq(t) * phase * Le * T_light,
+  /// MIS-weighted against the free-flight and equiangular vertices that the
+  /// direction's own sampling would give on the same segment (densities
+  /// vertexPdf * passProbability times p_ff(t) or p_eq(t)).
+  void lightDirectedVertex(const Scene& scene, const PathState& s, const LightDirected& l, const Ray& ray, float tMax,
+                           const Medium& medium, double startOpl, float uDistance, Sampler& sampler,
+                           RadianceRecorder& recorder) const {
+    EquiangularSegment seg = equiangularToward(ray, tMax, medium, s.gate, startOpl, l.lightPosition);
+    if (!seg.valid()) return;
+    float pdf = 0.0f;
+    float t = sampleEquiangular(seg, uDistance, pdf);
+    if (!(pdf > 0.0f)) return;
+    SurfaceInteraction x;  // a medium vertex: zero normal
+    x.p = ray(t);
+    x.n = Normal3f(0.0f);
+    Color3f vertex = medium.scatteringCoefficient(x.p) * medium.transmittance(ray, t, sampler) / pdf;
+    if (vertex.isBlack()) return;
+    double opl = startOpl + double(medium.eta()) * t;
+    const PhaseFunction& phase = medium.phase();
+    if (phase.hasDelay()) opl += phase.sampleDelay(sampler.next1D());
+    DirectionSample ds;
+    Color3f Le = l.emitter->sampleDirection(x.p, Point2f(l.uPick, 0.5f), ds);
+    if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
+    Le = Le / scene.emitterPickProbability(l.emitter);
+    Color3f fx(phase.eval(-ray.d, ds.d));
+    if (fx.isBlack()) return;
+    Connection c = connect(scene, x, ds.d, ds.p, ds.dist, &medium, s.surfaceEta, sampler);
+    if (c.transmittance.isBlack()) return;
+    // Densities of the three strategies for this vertex, divided by the common p_eq(t) / t^2.
+    float own = l.vertexPdf * l.passProbability;
+    float weight = powerHeuristic(l.lightPdf, own, own * medium.freeFlightPdf(t) / pdf);
+    recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
+                       l.emitter->pulse());
   }
 
   /// Next-event estimation from a medium vertex whose distance along the
@@ -327,7 +491,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = powerHeuristic(1.0f, pdf, 1.0f, s.medium->freeFlightPdf(t));
+    float weight = powerHeuristic(pdf, s.medium->freeFlightPdf(t), pdf * lightDirectedRatio(s, lightPosition));
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
   }
@@ -348,6 +512,12 @@ class TransientPathIntegrator : public TransientIntegrator {
       pdf = phase.pdf(wi, wo);
       return Color3f(phase.eval(wi, wo));
     }, t);
+    bool lightDirected = runsLightDirected(s);
+    if (lightDirected)
+      nextEventLightDirected(scene, s, ref, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
+        pdf = phase.pdf(wi, wo);
+        return Color3f(phase.eval(wi, wo));
+      });
     Vec3f wo;
     float pdf = 0.0f;
     float weight = phase.sample(wi, sampler.next2D(), wo, pdf);
@@ -357,6 +527,9 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.prev.bsdfPdf = pdf;
     s.prev.delta = false;
     s.ray = Ray(p, wo);
+    s.segmentFromVertex = true;
+    s.prevLightDirected = lightDirected;
+    s.passProbability = 1.0f;
     return russianRoulette(s, sampler);
   }
 
@@ -368,12 +541,15 @@ class TransientPathIntegrator : public TransientIntegrator {
       s.opl += bsdf.sampleDelay(sampler.next1D());
       if (s.opl >= recorder.horizon()) return false;
     }
+    bool lightDirected = bsdf.hasSmooth() && runsLightDirected(s);
     if (bsdf.hasSmooth()) {
-      nextEvent(scene, s, si, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
+      auto scatter = [&](const Vec3f& wo, float& pdf) {
         Vec3f local = si.toLocal(wo);
         pdf = bsdf.pdf(si, local);
         return bsdf.eval(si, local);
-      });
+      };
+      nextEvent(scene, s, si, sampler, recorder, scatter);
+      if (lightDirected) nextEventLightDirected(scene, s, si, sampler, recorder, scatter);
     }
     BSDFSample bs;
     Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
@@ -385,6 +561,9 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.prev.p = si.p;
     s.prev.bsdfPdf = bs.pdf;
     s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
+    s.segmentFromVertex = true;
+    s.prevLightDirected = lightDirected;
+    s.passProbability = 1.0f;
     return russianRoulette(s, sampler);
   }
 
@@ -402,6 +581,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   bool hideEmitters_;
   bool observerTime_;
   bool equiangular_;
+  bool lightDirections_;
   bool timeGating_;
   bool discardDirectLight_ = false;
 };

@@ -15,6 +15,12 @@ float powerHeuristic(float nA, float pdfA, float nB, float pdfB) {
   return a > 0.0f ? a / (a + b) : 0.0f;
 }
 
+float powerHeuristic(float pdfA, float pdfB, float pdfC) {
+  // In double: the densities of equiangular vertices near a light reach 1e6 and more.
+  double a = double(pdfA) * pdfA, b = double(pdfB) * pdfB, c = double(pdfC) * pdfC;
+  return a > 0.0 ? float(a / (a + b + c)) : 0.0f;
+}
+
 Color3f sampleEmitterMIS(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const Point2f& u,
                          const MISSampleCounts& counts) {
   if (!bsdf.hasSmooth()) return Color3f(0.0f);  // a delta BSDF never reflects a sampled direction

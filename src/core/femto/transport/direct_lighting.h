@@ -22,6 +22,9 @@ struct SurfaceInteraction;
 /// sample of strategy A with `nA` samples of density `pdfA` against strategy
 /// B with `nB` samples of density `pdfB`. Zero when A has zero density.
 float powerHeuristic(float nA, float pdfA, float nB, float pdfB);
+/// The same for one sample of each of three strategies: the weight of the one
+/// of density `pdfA` against those of densities `pdfB` and `pdfC`.
+float powerHeuristic(float pdfA, float pdfB, float pdfC);
 
 /// How many samples each strategy takes (both 1 in a path tracer).
 struct MISSampleCounts {

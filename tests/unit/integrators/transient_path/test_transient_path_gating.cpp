@@ -18,6 +18,7 @@
 #include "plugin_util.h"
 #include "single_scattering_model.h"
 #include "transient_test_util.h"
+#include "window_estimate.h"
 
 using namespace femto;
 using namespace femto::test;
@@ -40,37 +41,6 @@ std::shared_ptr<Scene> singleScatteringScene(bool gating) {
   <sensor type="perspective"><ref id="m"/></sensor>
   <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
 </scene>)"));
-}
-
-/// Per-sample totals of what `scene` records inside `grid`'s window along
-/// rays from `rays` (one Mean per bin, and the window's total).
-struct WindowEstimate {
-  std::vector<Mean> bins;
-  Mean total;
-};
-
-template <typename RayFn>
-WindowEstimate estimateWindow(const Scene& scene, const TimeGrid& grid, int n, uint64_t seed, RayFn&& rays) {
-  WindowEstimate e;
-  e.bins.resize(grid.bins);
-  auto sampler = seededSampler(seed);
-  PCG32 rng(seed, 1);
-  std::vector<double> path(grid.bins);
-  for (int i = 0; i < n; ++i) {
-    CollectingRecorder recorder(grid);
-    transientIntegrator(scene).sample(scene, rays(rng), *sampler, recorder);
-    std::fill(path.begin(), path.end(), 0.0);
-    double sum = 0.0;
-    for (const auto& [opl, value] : recorder.hits) {
-      int bin = grid.binOf(opl);
-      if (bin < 0) continue;
-      path[bin] += value.g;
-      sum += value.g;
-    }
-    for (int b = 0; b < grid.bins; ++b) e.bins[b].add(path[b]);
-    e.total.add(sum);
-  }
-  return e;
 }
 
 }  // namespace

@@ -1,0 +1,139 @@
+// transient_path's light-directed next-event vertices (light_directions):
+// one more estimator of the same transport, so with and without them the
+// estimates agree within noise, also with time gating (which restricts the
+// light-directed vertex's distances too) and with surfaces, an index-matched
+// boundary and multiple scattering in between (randomised fog cubes: no closed
+// form). The variance they remove is tested in
+// test_transient_path_worst_cells.cpp; the direction density itself in
+// tests/unit/transport/test_point_directions.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <femto/math/pcg32.h>
+
+#include "media_test_util.h"
+#include "plugin_util.h"
+#include "transient_test_util.h"
+#include "window_estimate.h"
+
+using namespace femto;
+using namespace femto::test;
+
+namespace {
+
+struct FogCube {
+  float sigmaT, albedo;
+  Point3f light;
+  float floorY = -0.95f;  // below -1: outside the cube, a vacuum gap between the two
+};
+
+/// A fog cube (index-matched) holding a point light and a diffuse floor, seen
+/// from outside: camera paths cross the boundary, scatter on the floor and in
+/// the fog. With the floor below the cube, rays from the floor cross a vacuum
+/// gap and the boundary before the fog (light-directed vertices follow them).
+std::shared_ptr<Scene> fogCube(const FogCube& c, bool lightDirections, bool gating) {
+  return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="6"/>
+    <boolean name="light_directions" value=")", lightDirections ? "true" : "false", R"("/>
+    <boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>
+  <medium id="fog" type="homogeneous"><rgb name="sigma_t" value=")", c.sigmaT, R"("/>
+    <rgb name="albedo" value=")", c.albedo, R"("/></medium>
+  <shape type="cube"><ref name="interior" id="fog"/></shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="0.95"/><rotate x="1" angle="-90"/><translate y=")", c.floorY, R"("/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf>
+  </shape>
+  <emitter type="point"><point name="position" x=")", c.light.x, R"(" y=")", c.light.y, R"(" z=")", c.light.z,
+                             R"("/><float name="intensity" value="3"/></emitter>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform></sensor>
+</scene>)"));
+}
+
+Ray cameraRay(PCG32& rng) {
+  Point3f target(rng.nextFloat() * 1.6f - 0.8f, rng.nextFloat() * 1.6f - 0.8f, 0.0f);
+  return Ray(Point3f(0.0f, 0.0f, 4.0f), normalize(target - Point3f(0.0f, 0.0f, 4.0f)));
+}
+
+void expectBinsAgree(const WindowEstimate& a, const WindowEstimate& b) {
+  for (size_t k = 0; k < a.bins.size(); ++k) {
+    double se = std::hypot(a.bins[k].standardError(), b.bins[k].standardError());
+    EXPECT_NEAR(a.bins[k].mean(), b.bins[k].mean(), 5.0 * se)
+        << "bin " << k << ": " << a.bins[k].mean() << " +- " << a.bins[k].standardError() << " vs "
+        << b.bins[k].mean() << " +- " << b.bins[k].standardError();
+  }
+  double se = std::hypot(a.total.standardError(), b.total.standardError());
+  EXPECT_NEAR(a.total.mean(), b.total.mean(), 5.0 * se);
+}
+
+}  // namespace
+
+TEST(TransientPathLightDirections, AgreeWithoutThemOnRandomisedFogCubes) {
+  PCG32 scenes(15, 7);
+  const TimeGrid grid{3.0, 0.5, 8};  // OPL 3 to 7: first arrivals to late multiple scattering
+  for (int k = 0; k < 3; ++k) {
+    FogCube c{0.3f + 1.2f * scenes.nextFloat(), 0.5f + 0.45f * scenes.nextFloat(),
+              Point3f(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f)};
+    SCOPED_TRACE(str("scene ", k, ": sigma_t ", c.sigmaT, " albedo ", c.albedo, " light ", c.light));
+    const int n = 20000;
+    WindowEstimate with = estimateWindow(*fogCube(c, true, false), grid, n, 300 + k, cameraRay);
+    WindowEstimate without = estimateWindow(*fogCube(c, false, false), grid, n, 400 + k, cameraRay);
+    ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(with, without);
+  }
+}
+
+TEST(TransientPathLightDirections, AgreeWithoutThemAcrossAVacuumGap) {
+  PCG32 scenes(17, 7);
+  const TimeGrid grid{3.0, 0.5, 8};
+  for (int k = 0; k < 2; ++k) {
+    FogCube c{0.3f + 1.2f * scenes.nextFloat(), 0.5f + 0.45f * scenes.nextFloat(),
+              Point3f(scenes.nextFloat() - 0.5f, -0.8f + 0.3f * scenes.nextFloat(), scenes.nextFloat() - 0.5f), -1.1f};
+    SCOPED_TRACE(str("scene ", k, ": sigma_t ", c.sigmaT, " albedo ", c.albedo, " light ", c.light));
+    const int n = 20000;
+    WindowEstimate with = estimateWindow(*fogCube(c, true, false), grid, n, 900 + k, cameraRay);
+    WindowEstimate without = estimateWindow(*fogCube(c, false, false), grid, n, 950 + k, cameraRay);
+    ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(with, without);
+  }
+}
+
+TEST(TransientPathLightDirections, GatedAgreeWithUngatedWithoutThem) {
+  PCG32 scenes(16, 7);
+  for (int k = 0; k < 3; ++k) {
+    FogCube c{0.3f + 1.2f * scenes.nextFloat(), 0.5f + 0.45f * scenes.nextFloat(),
+              Point3f(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f)};
+    const TimeGrid grid{5.0 + 2.0 * scenes.nextFloat(), 0.25, 4};  // a late window
+    SCOPED_TRACE(str("scene ", k, ": sigma_t ", c.sigmaT, " albedo ", c.albedo, " light ", c.light, " window from ",
+                     grid.start));
+    const int n = 20000;
+    WindowEstimate gated = estimateWindow(*fogCube(c, true, true), grid, n, 500 + k, cameraRay);
+    WindowEstimate plain = estimateWindow(*fogCube(c, false, false), grid, n, 600 + k, cameraRay);
+    ASSERT_GT(plain.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(gated, plain);
+  }
+}
+
+TEST(TransientPathLightDirections, DoubleScatteringBesideTheLightAgreesWithoutThem) {
+  // Where they matter most: unbounded fog, a light beside the view, double
+  // scattering only; the light-directed vertices carry much of the second
+  // bounce here, so weights that do not sum to one show.
+  auto scene = [](bool lightDirections) {
+    return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="3"/>
+    <boolean name="light_directions" value=")", lightDirections ? "true" : "false", R"("/></integrator>
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.8"/><float name="albedo" value="0.75"/></medium>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x="0.45" y="0.02" z="1"/><float name="intensity" value="2"/></emitter>
+</scene>)"));
+  };
+  auto rays = [](PCG32& rng) {
+    Vec3f target((rng.nextFloat() - 0.5f) * 0.4f, (rng.nextFloat() - 0.5f) * 0.4f, 1.0f);
+    return Ray(Point3f(0.0f), normalize(target));
+  };
+  const TimeGrid grid{1.0, 0.5, 8};
+  const int n = 200000;
+  WindowEstimate with = estimateWindow(*scene(true), grid, n, 700, rays);
+  WindowEstimate without = estimateWindow(*scene(false), grid, n, 800, rays);
+  expectBinsAgree(with, without);
+}
