@@ -49,7 +49,7 @@ TSAN_FILTER ?= RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount
 sanitize-thread: deps
 	cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMTO_SANITIZE=thread
 	cmake --build build-tsan -j $(JOBS) --target femto_unit_tests femto_render
-	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tools/sanitize/tsan-tbb.supp \
 	  FEMTO_PLUGIN_PATH=build-tsan/bin/plugins $(call SANITIZE_UNIT,build-tsan) --gtest_filter='$(TSAN_FILTER)'
 
 clean:
