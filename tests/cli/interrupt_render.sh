@@ -3,6 +3,7 @@
 # valid partial image and exit with 130.
 #   interrupt_render.sh FEMTO SCENE OUTPUT_DIR
 set -u
+. "$(dirname "$0")/process_wait.sh"
 femto=$1 scene=$2 out_dir=$3
 image=$out_dir/interrupted.exr
 rm -f "$image"
@@ -11,30 +12,12 @@ mkdir -p "$out_dir"
 # tiles, so a tile must be short for the stop to be quick.
 "$femto" render "$scene" -o "$image" --resolution 256x256 --spp 4096 --no-progress >"$out_dir/interrupt.log" 2>&1 &
 pid=$!
-# Wait until femto catches SIGINT (bit 2 of SigCgt in /proc/PID/status): it
-# installs its handler once the scene is loaded, just before rendering.
-catches_sigint() {
-  local mask
-  mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status" 2>/dev/null) || return 1
-  [ -n "$mask" ] && (( (16#$mask & 2) != 0 ))
-}
-for _ in $(seq 600); do
-  catches_sigint && break
-  kill -0 "$pid" 2>/dev/null || { echo "femto exited before rendering"; cat "$out_dir/interrupt.log"; exit 1; }
-  sleep 0.1
-done
-catches_sigint || { kill -KILL "$pid"; echo "femto never installed its Ctrl-C handler"; exit 1; }
+# femto installs its Ctrl-C handler once the scene is loaded.
+wait_for_handler 2 "$pid" >/dev/null || { kill -KILL "$pid" 2>/dev/null; echo "femto never started rendering"; cat "$out_dir/interrupt.log"; exit 1; }
 sleep 1
 kill -INT "$pid"
 # A cancelled render must not hang: give it 60 s to write the partial image.
-for _ in $(seq 600); do
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
-if kill -0 "$pid" 2>/dev/null; then
-  kill -KILL "$pid"
-  echo "femto did not stop within 60 s of Ctrl-C"; cat "$out_dir/interrupt.log"; exit 1
-fi
+wait_for_exit "$pid" 60 || { echo "femto did not stop within 60 s of Ctrl-C"; cat "$out_dir/interrupt.log"; exit 1; }
 wait "$pid"; code=$?
 cat "$out_dir/interrupt.log"
 [ "$code" -eq 130 ] || { echo "expected exit 130 after Ctrl-C, got $code"; exit 1; }

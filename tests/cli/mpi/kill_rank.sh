@@ -8,34 +8,16 @@ set -u
 femto=$1 scene=$2 out=$3
 shift 3
 . "$(dirname "$0")/mpi_env.sh"
+. "$(dirname "$0")/../process_wait.sh"
 rm -rf "$out" && mkdir -p "$out"
 # Minutes of work, so the job is surely still rendering when rank 1 dies.
 "${mpirun_cmd[@]}" -n 2 "$femto" render "$scene" -o "$out/killed.exr" --no-progress "$@" >"$out/job.log" 2>&1 &
 job=$!
-# Rank 1: the femto child of mpirun whose environment says so. Wait until it
-# catches SIGINT (bit 2 of SigCgt): it installs its handler just before rendering.
-rank1=""
-for _ in $(seq 600); do
-  for pid in $(pgrep -P "$job" femto); do
-    tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1" && rank1=$pid
-  done
-  if [ -n "$rank1" ]; then
-    mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$rank1/status" 2>/dev/null)
-    [ -n "$mask" ] && (( (16#$mask & 2) != 0 )) && break
-  fi
-  kill -0 "$job" 2>/dev/null || { echo "the job ended before rendering"; cat "$out/job.log"; exit 1; }
-  sleep 0.1
-done
-[ -n "$rank1" ] || { kill -KILL "$job"; echo "rank 1 never started rendering"; exit 1; }
+# Rank 1 installs its Ctrl-C handler just before rendering.
+rank1=$(wait_for_handler 2 "$job" 1) || { kill -KILL "$job"; echo "rank 1 never started rendering"; cat "$out/job.log"; exit 1; }
 sleep 1
 kill -KILL "$rank1"
-for _ in $(seq 600); do
-  kill -0 "$job" 2>/dev/null || break
-  sleep 0.1
-done
-if kill -0 "$job" 2>/dev/null; then
-  kill -KILL "$job"; echo "the job did not end within 60 s of rank 1's death"; cat "$out/job.log"; exit 1
-fi
+wait_for_exit "$job" 60 || { echo "the job did not end within 60 s of rank 1's death"; cat "$out/job.log"; exit 1; }
 wait "$job"; code=$?
 cat "$out/job.log"
 [ "$code" -ne 0 ] || { echo "expected a non-zero exit after a rank died"; exit 1; }
