@@ -33,6 +33,9 @@ import tempfile
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import commit, cpu_model, load_line  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FEMTO = os.path.join(ROOT, "build", "bin", "femto")
 FOG = os.path.join(ROOT, "scenes", "cornell-box-fog", "scene.xml")
@@ -131,17 +134,6 @@ def table_windows(args, out_dir):
     print()
 
 
-def cpu_model():
-    out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
-    return next((l.split(":", 1)[1].strip() for l in out.splitlines() if l.startswith("Model name")), "unknown CPU")
-
-
-def commit():
-    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout
-    dirty = subprocess.run(["git", "-C", ROOT, "diff", "--quiet", "HEAD", "--", "src", "tools", "scenes"]).returncode
-    return head.strip() + (" (with uncommitted changes)" if dirty else "")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=3, help="seed pairs for (a) and (b)")
@@ -162,8 +154,7 @@ def main():
         if "b" in args.only:
             table_windows(args, out_dir)
         load_end = os.getloadavg()
-        print("Load average (1, 5, 15 min) at the start: " + " ".join(f"{x:.2f}" for x in load_start) +
-              "; at the end: " + " ".join(f"{x:.2f}" for x in load_end) + ".")
+        print(load_line(load_start, load_end))
         sys.stdout.flush()
 
 

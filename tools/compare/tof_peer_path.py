@@ -38,6 +38,9 @@ import tempfile
 
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
+from provenance import commit, cpu_model, load_line  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PEER = os.path.join(ROOT, "..", "shared", "scenes", "tof-tungsten-cbox-trans")
 EPSILON = 0.01
@@ -136,17 +139,6 @@ def table_protocol(args, out_dir):
     print()
 
 
-def commit():
-    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout
-    dirty = subprocess.run(["git", "-C", ROOT, "diff", "--quiet", "HEAD", "--", "src", "tools"]).returncode
-    return head.strip() + (" (with uncommitted changes)" if dirty else "")
-
-
-def cpu_model():
-    out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
-    return next((l.split(":", 1)[1].strip() for l in out.splitlines() if l.startswith("Model name")), "unknown CPU")
-
-
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--femto", default=os.path.join(ROOT, "build", "bin", "femto"))
@@ -171,8 +163,7 @@ def main(argv):
         if "2" in args.only:
             table_protocol(args, out_dir)
     load_end = os.getloadavg()
-    print("Load average (1, 5, 15 min) at the start: " + " ".join(f"{x:.2f}" for x in load_start) +
-          "; at the end: " + " ".join(f"{x:.2f}" for x in load_end) + ".")
+    print(load_line(load_start, load_end))
     return 0
 
 
