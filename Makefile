@@ -45,7 +45,7 @@ sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  FEMTO_PLUGIN_PATH=build-asan/bin/plugins $(call SANITIZE_UNIT,build-asan)
 
-TSAN_FILTER ?= RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount*:TransientStreaming.*
+TSAN_FILTER ?= ThreadEdges.*:RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount*:TransientStreaming.*
 sanitize-thread: deps
 	cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMTO_SANITIZE=thread
 	cmake --build build-tsan -j $(JOBS) --target femto_unit_tests femto_render

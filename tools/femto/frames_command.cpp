@@ -9,14 +9,15 @@
 #include <tbb/parallel_for.h>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/film/npy_volume.h>
 #include <femto/film/transient_output.h>
 #include <femto/film/volume_info.h>
+#include <femto/film/volume_scan.h>
 #include <femto/view/contact_sheet.h>
 #include <femto/view/display.h>
 #include <femto/view/frame_label.h>
 #include <femto/view/running_integral.h>
-#include <femto/film/volume_scan.h>
 
 #include "command_options.h"
 #include "commands.h"
@@ -100,28 +101,34 @@ int writeFramePngs(const FramesSettings& settings) {
     const int count = std::min(batch, end - b0);
     std::vector<Bitmap> frames = readFrames(volume, b0, count);
     if (cumulative) accumulateFrames(frames, sum);
-    tbb::parallel_for(0, count, [&](int k) {
+    auto writeFrame = [&](int k) {
       const int bin = b0 + k;
       if (bin < first || (bin - first) % settings.every != 0) return;
       Bitmap image = displayImage(frames[size_t(k)], exposure, settings.exposure.falseColour);
       if (settings.label) drawLabel(image, labelOf(bin));
       writePNG(dir / frameFileName(bin, volume.bins(), ".png"), image);
-      if (int index = sheetIndex[size_t((bin - first) / settings.every)]; sheet && index >= 0) sheet->place(index, image);
-    });
+      if (int index = sheetIndex[size_t((bin - first) / settings.every)]; sheet && index >= 0)
+        sheet->place(index, image);
+    };
+    ForkJoinEdges edges;
+    tbb::parallel_for(0, count, edges.task(writeFrame));
+    edges.join();
   }
   std::cout << "wrote " << shown << " frames (bins " << first << " to " << end - 1;
   if (settings.every > 1) std::cout << ", every " << settings.every;
   if (info)
     std::cout << ", OPL " << info->grid.start + first * info->grid.binWidth << " to "
               << info->grid.start + end * info->grid.binWidth;
-  std::cout << (cumulative ? (before ? ", running integral from the light before the window" : ", running integral") : "")
+  std::cout << (cumulative ? (before ? ", running integral from the light before the window" : ", running integral")
+                           : "")
             << ") to " << dir.string() << '\n';
   if (sheet) {
     writePNG(dir / "contact_sheet.png", sheet->image());
     std::cout << "wrote " << (dir / "contact_sheet.png").string() << '\n';
   }
   const std::string pattern = (dir / "frame_*.png").string();
-  for (const auto& [wanted, name] : {std::pair(settings.gif, "sequence.gif"), std::pair(settings.mp4, "sequence.mp4")}) {
+  for (const auto& [wanted, name] :
+       {std::pair(settings.gif, "sequence.gif"), std::pair(settings.mp4, "sequence.mp4")}) {
     if (!wanted) continue;
     encodeSequence(ffmpeg, pattern, settings.fps, dir / name);
     std::cout << "wrote " << (dir / name).string() << '\n';

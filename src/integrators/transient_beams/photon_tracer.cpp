@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include <femto/base/thread_edges.h>
 #include <femto/math/pcg32.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/medium.h>
@@ -276,13 +277,16 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
     std::vector<SurfacePhoton> photons;
   };
   std::vector<Block> out(blocks);
-  tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
+  auto traceBlock = [&](uint64_t b) {
     // One tracer per block: cheap to make, and no thread-local state to share.
     PhotonTracer tracer(scene, settings, horizon);
     const uint64_t end = std::min(pass.photonCount, (b + 1) * PhotonsPerBlock);
     for (uint64_t i = b * PhotonsPerBlock; i < end; ++i)
       tracer.trace(seed, i, out[b].beams, out[b].photons, i < pass.beamPhotonCount);
-  });
+  };
+  ForkJoinEdges edges;
+  tbb::parallel_for(uint64_t(0), blocks, edges.task(traceBlock));
+  edges.join();
   size_t beamCount = 0, photonCount = 0;
   for (const Block& b : out) beamCount += b.beams.size(), photonCount += b.photons.size();
   pass.beams.reserve(beamCount);

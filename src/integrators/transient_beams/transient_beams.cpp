@@ -47,6 +47,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <femto/base/thread_edges.h>
 #include <femto/core/log.h>
 #include <femto/core/plugin.h>
 #include <femto/film/transient_film.h>
@@ -164,9 +165,10 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
       };
       // Photons are traced with the thread count the user asked for.
-      if (options.threads > 0)
-        tbb::task_arena(options.threads).execute(trace);
-      else
+      if (options.threads > 0) {
+        tbb::task_arena arena(options.threads);
+        executeInArena(arena, trace);
+      } else
         trace();
       if (pass == 0) logInfo("transient_beams: pass 0: ", previous->toString());
       return std::static_pointer_cast<const TransientIntegrator>(previous);

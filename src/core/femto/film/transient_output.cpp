@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/core/resources.h>
 #include <femto/film/volume_info.h>
 #include <femto/film/volume_scan.h>
@@ -54,7 +55,10 @@ void writeFrames(const NpyVolume& volume, const std::filesystem::path& dir, size
     const int count = std::min(batch, bins - b0);
     std::vector<Bitmap> frames = readFrames(volume, b0, count);
     // Frames are independent files: compress and write them in parallel.
-    tbb::parallel_for(0, count, [&](int k) { writeEXR(dir / frameFileName(b0 + k, bins, ".exr"), frames[size_t(k)]); });
+    auto writeFrame = [&](int k) { writeEXR(dir / frameFileName(b0 + k, bins, ".exr"), frames[size_t(k)]); };
+    ForkJoinEdges edges;
+    tbb::parallel_for(0, count, edges.task(writeFrame));
+    edges.join();
     if (onBatch) onBatch(b0 + count, bins);
   }
 }

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/core/progress.h>
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_output.h>
@@ -42,7 +43,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
                             options.onProgress);
   RenderStats stats;
   for (int pass = 0; pass < passes; ++pass) {
-    std::shared_ptr<const TransientIntegrator> integrator = passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
+    std::shared_ptr<const TransientIntegrator> integrator =
+        passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
     TransientRenderContext context{scene, *integrator, film.timeDeposit()};
     auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
       return std::make_unique<TransientTile>(offset, size, context);
@@ -61,9 +63,10 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     framesCounted = units;
   };
   // Frames are written in parallel: with the thread count the user asked for.
-  if (options.threads > 0)
-    tbb::task_arena(options.threads).execute([&] { output.finish(onFrames); });
-  else
+  if (options.threads > 0) {
+    tbb::task_arena arena(options.threads);
+    executeInArena(arena, [&] { output.finish(onFrames); });
+  } else
     output.finish(onFrames);
   progress.finish();
   return stats;

@@ -11,11 +11,12 @@
 #include <vector>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/core/log.h>
-#include <femto/core/resources.h>
 #include <femto/core/progress.h>
-#include <femto/render/scene.h>
+#include <femto/core/resources.h>
 #include <femto/loop/tile_distribution.h>
+#include <femto/render/scene.h>
 
 namespace femto {
 namespace {
@@ -49,7 +50,9 @@ class ImageBlockTile final : public TileAccumulator {
   ImageBlockTile(const Point2i& offset, const Point2i& size, const ReconstructionFilter* filter, int channels,
                  const SplatFunction& splatFn)
       : block(offset, size, filter, channels), splatFn_(splatFn) {}
-  bool addSample(const Point2i&, const Point2f& pos, Sampler& sampler) override { return splatFn_(pos, sampler, block); }
+  bool addSample(const Point2i&, const Point2f& pos, Sampler& sampler) override {
+    return splatFn_(pos, sampler, block);
+  }
   void pack(std::vector<float>& out) const override { block.pack(out); }
   void unpack(const float* data, size_t count) override { block.unpack(data, count); }
   ImageBlock block;
@@ -114,31 +117,51 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
   const uint64_t seed = prototype.cameraSeed(job.options.seed);
   std::optional<tbb::task_arena> arena;
   if (job.options.threads > 0) arena.emplace(job.options.threads);
+  // The pipeline's hand-offs stated for ThreadSanitizer (base/thread_edges.h):
+  // each serial stage runs its items in order, and a tile passes from the
+  // stage that made it to the next one.
+  char claimOrder = 0, deliverOrder = 0;
+  ForkJoinEdges edges;
+  auto claimStage = [&](tbb::flow_control& fc) -> RenderTile* {
+    ForkJoinEdges::TaskScope scope(edges);
+    acquireFrom(&claimOrder);
+    RenderTile* tile = claim();
+    releaseTo(&claimOrder);
+    if (!tile)
+      fc.stop();
+    else
+      releaseTo(tile);
+    return tile;
+  };
+  auto renderStage = [&](RenderTile* tile) {
+    ForkJoinEdges::TaskScope scope(edges);
+    acquireFrom(tile);
+    renderTile(*tile, prototype, film.size().x, seed, job.makeTile);
+    releaseTo(tile);
+    return tile;
+  };
+  auto deliverStage = [&](RenderTile* tile) {
+    ForkJoinEdges::TaskScope scope(edges);
+    acquireFrom(&deliverOrder);
+    acquireFrom(tile);
+    deliver(*tile);
+    releaseTo(&deliverOrder);
+  };
   auto work = [&] {
     // A pipeline: tiles enter in order, render in parallel, and leave in
     // order. The token limit bounds how many tiles exist at once (rendering
     // or waiting for an earlier tile), which bounds memory for large tiles
     // (transient films) and keeps the consumer's sums in a fixed order.
-    tbb::parallel_pipeline(
-        tilesInFlight(),
-        tbb::make_filter<void, RenderTile*>(tbb::filter_mode::serial_in_order,
-                                            [&](tbb::flow_control& fc) -> RenderTile* {
-                                              RenderTile* tile = claim();
-                                              if (!tile) fc.stop();
-                                              return tile;
-                                            }) &
-            tbb::make_filter<RenderTile*, RenderTile*>(tbb::filter_mode::parallel,
-                                                       [&](RenderTile* tile) {
-                                                         renderTile(*tile, prototype, film.size().x, seed, job.makeTile);
-                                                         return tile;
-                                                       }) &
-            tbb::make_filter<RenderTile*, void>(tbb::filter_mode::serial_in_order,
-                                                [&](RenderTile* tile) { deliver(*tile); }));
+    tbb::parallel_pipeline(tilesInFlight(),
+                           tbb::make_filter<void, RenderTile*>(tbb::filter_mode::serial_in_order, claimStage) &
+                               tbb::make_filter<RenderTile*, RenderTile*>(tbb::filter_mode::parallel, renderStage) &
+                               tbb::make_filter<RenderTile*, void>(tbb::filter_mode::serial_in_order, deliverStage));
   };
   if (arena)
     arena->execute(work);
   else
     work();
+  edges.join();
 }
 
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
@@ -151,9 +174,9 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
   if (TileDistribution* distribution = tileDistribution()) return distribution->run(job);
   const Point2i crop = scene.sensor().film().cropSize();
   std::optional<ProgressReporter> ownProgress;
-  ProgressReporter& progress =
-      jobProgress ? *jobProgress : ownProgress.emplace("Rendering", uint64_t(crop.x) * uint64_t(crop.y), options.progress,
-                                                   options.onProgress);
+  ProgressReporter& progress = jobProgress ? *jobProgress
+                                           : ownProgress.emplace("Rendering", uint64_t(crop.x) * uint64_t(crop.y),
+                                                                 options.progress, options.onProgress);
   const auto start = std::chrono::steady_clock::now();
   bool cancelled = false;
   size_t next = 0;
@@ -182,8 +205,7 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
 }
 
 void reportTileStream(const RenderStats& stats) {
-  if (stats.invalidSamples > 0)
-    logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
+  if (stats.invalidSamples > 0) logWarn(stats.invalidSamples, " samples were NaN/Inf/negative and were dropped");
   if (!stats.completed) logWarn("rendering was cancelled; the image contains only the tiles finished so far");
 }
 
@@ -208,18 +230,22 @@ RenderStats renderSplatTiles(const Scene& scene, const RenderOptions& options, c
 
 RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const SampleFunction& sampleFn,
                         ImageBlock& result) {
-  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
-    return block.put(pos, sampleFn(pos, sampler));
-  }, result);
+  return renderSplatTiles(
+      scene, options,
+      [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) { return block.put(pos, sampleFn(pos, sampler)); },
+      result);
 }
 
 RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
                                ImageBlock& result) {
-  return renderSplatTiles(scene, options, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
-    std::vector<float> values(size_t(block.channelCount()), 0.0f);
-    sampleFn(pos, sampler, values.data());
-    return block.put(pos, values.data());
-  }, result);
+  return renderSplatTiles(
+      scene, options,
+      [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+        std::vector<float> values(size_t(block.channelCount()), 0.0f);
+        sampleFn(pos, sampler, values.data());
+        return block.put(pos, values.data());
+      },
+      result);
 }
 
 RenderStats renderSteadyImage(const Scene& scene, const RenderOptions& options,
@@ -257,9 +283,12 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
     };
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
-    accumulatePassStats(stats, renderSplatTiles(scene, passOptions, [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
-      return block.put(pos, sampleFn(pos, sampler));
-    }, result, &progress));
+    accumulatePassStats(stats, renderSplatTiles(
+                                   scene, passOptions,
+                                   [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
+                                     return block.put(pos, sampleFn(pos, sampler));
+                                   },
+                                   result, &progress));
     if (!stats.completed) break;
   }
   progress.finish();
