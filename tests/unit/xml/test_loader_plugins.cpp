@@ -100,3 +100,27 @@ TEST(LoaderPlugins, UnknownPluginWithoutCloseMatchNamesTheSearchPath) {
       EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
   }
 }
+
+// --resolution and --spp reach the film, sampler and sensor a scene gets by
+// default (Mitsuba's hdrfilm, independent, perspective), not only written ones.
+TEST(LoaderPlugins, OverridesReachTheDefaultFilmSamplerAndSensor) {
+  for (const char* name : {"perspective", "independent", "hdrfilm", "sphere", "constant"})
+    if (!havePlugin(name)) GTEST_SKIP() << name << " plugin not loadable";
+  LoadOptions options;
+  options.resolution = Point2i(12, 7);
+  options.sampleCount = 3;
+  const std::string lit = "<shape type=\"sphere\"/><emitter type=\"constant\"/>";
+  for (const std::string& sensor : {std::string(), std::string("<sensor type=\"perspective\"/>"),
+                                    std::string("<sensor type=\"perspective\"><film type=\"hdrfilm\"/></sensor>"),
+                                    std::string("<sensor type=\"perspective\"><sampler type=\"independent\"/></sensor>")}) {
+    SCOPED_TRACE(sensor.empty() ? "no <sensor>" : sensor);
+    auto scene = loadSceneFromString("<scene version=\"3.0.0\">" + sensor + lit + "</scene>", ".", options);
+    ASSERT_TRUE(scene);
+    EXPECT_EQ(scene->sensor().film().size(), Point2i(12, 7));
+    EXPECT_EQ(scene->sensor().sampler().sampleCount(), 3u);
+  }
+  // Without overrides the defaults are Mitsuba's (768 x 576, 4 samples).
+  auto plain = loadSceneFromString("<scene version=\"3.0.0\">" + lit + "</scene>", ".", {});
+  EXPECT_EQ(plain->sensor().film().size(), Point2i(768, 576));
+  EXPECT_EQ(plain->sensor().sampler().sampleCount(), 4u);
+}

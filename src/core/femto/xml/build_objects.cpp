@@ -16,6 +16,30 @@ std::vector<std::pair<std::string, int64_t>> overridesFor(ObjectKind kind, const
   return {};
 }
 
+/// Mitsuba's default children that the command-line overrides reach: a
+/// sensor without <film> gets an hdrfilm, one without <sampler> an
+/// independent sampler, a scene without <sensor> a perspective camera
+/// (render/default_child.h makes the same ones). Made by the plugins, they
+/// would not see --resolution or --spp, which would then be ignored without a
+/// word; so when an override reaches one, the loader makes it.
+struct DefaultChild {
+  ObjectKind parent, child;
+  const char* plugin;
+};
+constexpr DefaultChild DefaultChildren[] = {
+    {ObjectKind::Sensor, ObjectKind::Film, "hdrfilm"},
+    {ObjectKind::Sensor, ObjectKind::Sampler, "independent"},
+    {ObjectKind::Scene, ObjectKind::Sensor, "perspective"},
+};
+
+/// Whether an override applies to an object of `kind` or to a default child of it.
+bool overridesReach(ObjectKind kind, const LoadOptions& options) {
+  if (!overridesFor(kind, options).empty()) return true;
+  for (const DefaultChild& d : DefaultChildren)
+    if (d.parent == kind && overridesReach(d.child, options)) return true;
+  return false;
+}
+
 bool isOverridden(const std::vector<std::pair<std::string, int64_t>>& overrides, const std::string& name) {
   for (const auto& o : overrides)
     if (o.first == name) return true;
@@ -83,7 +107,26 @@ Properties ObjectBuilder::properties(const XmlNode& node) {
     }
   }
   for (const auto& [name, value] : overrides) props.setInt(name, value, node.location);
+  addOverriddenDefaults(*kind, props);
   return props;
+}
+
+void ObjectBuilder::addOverriddenDefaults(ObjectKind kind, Properties& props) {
+  for (const DefaultChild& d : DefaultChildren) {
+    if (d.parent != kind || !props.objectsOfKind(d.child).empty() || !overridesReach(d.child, options_)) continue;
+    Properties child(d.plugin);
+    child.setLocation(props.location());
+    for (const auto& [name, value] : overridesFor(d.child, options_)) child.setInt(name, value, props.location());
+    addOverriddenDefaults(d.child, child);
+    ObjectRef object;
+    try {
+      object = factory_.create(d.child, child);
+    } catch (const Error& e) {
+      throw Error(props.location(), str("the default <", kindTag(d.child), "> (", d.plugin, "): ", e.what()));
+    }
+    props.setObject(str("_default_", kindTag(d.child)), object, props.location(),
+                    str("default <", kindTag(d.child), " type=\"", d.plugin, "\">"));
+  }
 }
 
 ObjectRef ObjectBuilder::build(const XmlNode& node) {

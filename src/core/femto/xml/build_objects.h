@@ -39,6 +39,9 @@ class ObjectBuilder {
   Properties properties(const XmlNode& node);
 
  private:
+  /// Makes the default film, sampler or sensor that a command-line override
+  /// reaches and `props` lacks (see DefaultChildren in the .cpp).
+  void addOverriddenDefaults(ObjectKind kind, Properties& props);
   /// Warn (or, when strict, throw) for parameters the object did not read.
   void reportUnused(const Properties& props, const XmlNode& node) const;
 
