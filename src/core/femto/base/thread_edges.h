@@ -41,38 +41,25 @@ inline void acquireFrom([[maybe_unused]] const void* address) {
 #endif
 }
 
-/// The edges of one fork-join region. Make it on the spawning thread just
-/// before the region (its constructor is the fork), run every task body
-/// through task() or inside a TaskScope, and call join() once the region
-/// has returned: each body then sees what the spawner wrote before the fork,
-/// and the spawner sees what every body wrote.
+/// The edges of one fork-join region. Make it on the spawning thread after
+/// everything the tasks read is written, just before the region (its
+/// constructor is the fork); hand TBB the task bodies through task(); call
+/// join() once the region has returned. Each body then sees what the spawner
+/// wrote before the fork, and the spawner sees what every body wrote.
 class ForkJoinEdges {
  public:
   ForkJoinEdges() { releaseTo(&fork_); }
   ForkJoinEdges(const ForkJoinEdges&) = delete;
   ForkJoinEdges& operator=(const ForkJoinEdges&) = delete;
 
-  /// Marks one task body: entered after the fork, left before the join.
-  class TaskScope {
-   public:
-    explicit TaskScope(const ForkJoinEdges& edges) : edges_(edges) { acquireFrom(&edges_.fork_); }
-    ~TaskScope() { releaseTo(&edges_.join_); }
-    TaskScope(const TaskScope&) = delete;
-    TaskScope& operator=(const TaskScope&) = delete;
-
-   private:
-    const ForkJoinEdges& edges_;
-  };
-
-  /// `body` wrapped as a task of this region (called with the same arguments).
+  /// `body` as a task of this region (see TbbTask); `body` must outlive the region.
   template <typename Body>
-  auto task(Body& body) const {
-    return [this, &body](auto&&... args) -> decltype(auto) {
-      TaskScope scope(*this);
-      return body(std::forward<decltype(args)>(args)...);
-    };
-  }
+  auto task(Body& body) const;
 
+  /// A task body starts: after the fork.
+  void enter() const { acquireFrom(&fork_); }
+  /// A task body ends: before the join.
+  void leave() const { releaseTo(&join_); }
   /// Call on the spawning thread after the region has returned.
   void join() const { acquireFrom(&join_); }
 
@@ -80,18 +67,52 @@ class ForkJoinEdges {
   char fork_ = 0, join_ = 0;
 };
 
+/// A task body of one fork-join region as TBB copies and calls it: a pointer
+/// to the region's edges and one to the body, which was made before the
+/// fork. TBB copies this object on the spawning thread after the fork, in
+/// its own code, and hands the copy over inside libtbb; reading the two
+/// pointers is the one access TSan cannot order, and
+/// tools/sanitize/tsan-tbb.supp names this class for it (race_top: only
+/// the reads in this frame, not those of the body it calls).
+template <typename Body>
+class TbbTask {
+ public:
+  TbbTask(const ForkJoinEdges& edges, Body& body) : edges_(&edges), body_(&body) {}
+
+  template <typename... Args>
+  decltype(auto) operator()(Args&&... args) const {
+    const ForkJoinEdges& edges = *edges_;
+    Body& body = *body_;
+    edges.enter();
+    struct Leave {
+      const ForkJoinEdges& edges;
+      ~Leave() { edges.leave(); }
+    } leave{edges};
+    return body(std::forward<Args>(args)...);
+  }
+
+ private:
+  const ForkJoinEdges* edges_;
+  Body* body_;
+};
+
+template <typename Body>
+auto ForkJoinEdges::task(Body& body) const {
+  return TbbTask<Body>(*this, body);
+}
+
 /// Runs `body` through `arena` (a tbb::task_arena, or anything with
 /// execute()), which may hand it to another thread, with the fork and join
-/// edges stated; returns what `body` returns.
+/// edges stated; returns what `body` returns. `body` is made before the
+/// fork (it is an argument), so it may be a temporary.
 template <typename Arena, typename Body>
 decltype(auto) executeInArena(Arena& arena, Body&& body) {
   ForkJoinEdges edges;
-  auto task = edges.task(body);
   struct Join {
     const ForkJoinEdges& edges;
     ~Join() { edges.join(); }
   } join{edges};
-  return arena.execute(task);
+  return arena.execute(edges.task(body));
 }
 
 }  // namespace femto

@@ -65,7 +65,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
-    executeInArena(arena, [&] { output.finish(onFrames); });
+    auto finish = [&] { output.finish(onFrames); };
+    executeInArena(arena, finish);
   } else
     output.finish(onFrames);
   progress.finish();

@@ -121,9 +121,7 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
   // each serial stage runs its items in order, and a tile passes from the
   // stage that made it to the next one.
   char claimOrder = 0, deliverOrder = 0;
-  ForkJoinEdges edges;
   auto claimStage = [&](tbb::flow_control& fc) -> RenderTile* {
-    ForkJoinEdges::TaskScope scope(edges);
     acquireFrom(&claimOrder);
     RenderTile* tile = claim();
     releaseTo(&claimOrder);
@@ -134,14 +132,12 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
     return tile;
   };
   auto renderStage = [&](RenderTile* tile) {
-    ForkJoinEdges::TaskScope scope(edges);
     acquireFrom(tile);
     renderTile(*tile, prototype, film.size().x, seed, job.makeTile);
     releaseTo(tile);
     return tile;
   };
   auto deliverStage = [&](RenderTile* tile) {
-    ForkJoinEdges::TaskScope scope(edges);
     acquireFrom(&deliverOrder);
     acquireFrom(tile);
     deliver(*tile);
@@ -152,16 +148,18 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
     // order. The token limit bounds how many tiles exist at once (rendering
     // or waiting for an earlier tile), which bounds memory for large tiles
     // (transient films) and keeps the consumer's sums in a fixed order.
-    tbb::parallel_pipeline(tilesInFlight(),
-                           tbb::make_filter<void, RenderTile*>(tbb::filter_mode::serial_in_order, claimStage) &
-                               tbb::make_filter<RenderTile*, RenderTile*>(tbb::filter_mode::parallel, renderStage) &
-                               tbb::make_filter<RenderTile*, void>(tbb::filter_mode::serial_in_order, deliverStage));
+    ForkJoinEdges edges;
+    tbb::parallel_pipeline(
+        tilesInFlight(),
+        tbb::make_filter<void, RenderTile*>(tbb::filter_mode::serial_in_order, edges.task(claimStage)) &
+            tbb::make_filter<RenderTile*, RenderTile*>(tbb::filter_mode::parallel, edges.task(renderStage)) &
+            tbb::make_filter<RenderTile*, void>(tbb::filter_mode::serial_in_order, edges.task(deliverStage)));
+    edges.join();
   };
   if (arena)
-    arena->execute(work);
+    executeInArena(*arena, work);
   else
     work();
-  edges.join();
 }
 
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
