@@ -37,7 +37,8 @@ TEST(LoaderPlugins, CreatesARealPlugin) {
   if (!havePlugin("diffuse")) GTEST_SKIP() << "diffuse plugin not loadable";
   LoadOptions strict;
   strict.strict = true;
-  ObjectRef bsdf = load("<bsdf type=\"diffuse\" id=\"white\">\n  <rgb name=\"reflectance\" value=\"0.5\"/>\n</bsdf>", strict);
+  ObjectRef bsdf =
+      load("<bsdf type=\"diffuse\" id=\"white\">\n  <rgb name=\"reflectance\" value=\"0.5\"/>\n</bsdf>", strict);
   ASSERT_TRUE(bsdf);
   EXPECT_EQ(bsdf->kind(), ObjectKind::BSDF);
   EXPECT_EQ(bsdf->id(), "white");
@@ -46,8 +47,9 @@ TEST(LoaderPlugins, CreatesARealPlugin) {
 TEST(LoaderPlugins, UnknownPluginSuggestsCloseNames) {
   if (!pluginBuilt("diffuse")) GTEST_SKIP() << "diffuse plugin not built";
   std::string message = loadertest::errorOf([] { load("<bsdf type=\"difuse\"/>"); });
-  EXPECT_EQ(message, "test.xml:1: unknown <bsdf> plugin \"difuse\" (did you mean \"diffuse\"?)\n"
-                     "    <bsdf type=\"difuse\"/>");
+  EXPECT_EQ(message,
+            "test.xml:1: unknown <bsdf> plugin \"difuse\" (did you mean \"diffuse\"?)\n"
+            "    <bsdf type=\"difuse\"/>");
 }
 
 TEST(LoaderPlugins, PluginOfTheWrongKindIsAnError) {
@@ -71,8 +73,8 @@ TEST(LoaderPlugins, UnusedParameterOfARealPlugin) {
 
 TEST(LoaderPlugins, BadValueInARealSceneIsReportedAtItsLine) {
   if (!havePlugin("sphere")) GTEST_SKIP() << "sphere plugin not loadable";
-  EXPECT_SCENE_ERROR(load("<shape type=\"sphere\">\n\n  <float name=\"radius\" value=\"abc\"/>\n</shape>"), "test.xml:3",
-                     "expected a number, got 'abc'");
+  EXPECT_SCENE_ERROR(load("<shape type=\"sphere\">\n\n  <float name=\"radius\" value=\"abc\"/>\n</shape>"),
+                     "test.xml:3", "expected a number, got 'abc'");
 }
 
 TEST(LoaderPlugins, LoadsASharedSceneWithIncludes) {
@@ -95,7 +97,8 @@ TEST(LoaderPlugins, UnknownPluginWithoutCloseMatchNamesTheSearchPath) {
     FAIL() << "expected an error";
   } catch (const femto::Error& e) {
     std::string message = e.what();
-    EXPECT_NE(message.find("test.xml:1: unknown <bsdf> plugin \"zzzqqq\" (no zzzqqq.so in "), std::string::npos) << message;
+    EXPECT_NE(message.find("test.xml:1: unknown <bsdf> plugin \"zzzqqq\" (no zzzqqq.so in "), std::string::npos)
+        << message;
     for (const auto& dir : femto::PluginManager::instance().searchPath())
       EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
   }
@@ -110,14 +113,24 @@ TEST(LoaderPlugins, OverridesReachTheDefaultFilmSamplerAndSensor) {
   options.resolution = Point2i(12, 7);
   options.sampleCount = 3;
   const std::string lit = "<shape type=\"sphere\"/><emitter type=\"constant\"/>";
-  for (const std::string& sensor : {std::string(), std::string("<sensor type=\"perspective\"/>"),
-                                    std::string("<sensor type=\"perspective\"><film type=\"hdrfilm\"/></sensor>"),
-                                    std::string("<sensor type=\"perspective\"><sampler type=\"independent\"/></sensor>")}) {
+  for (const std::string& sensor :
+       {std::string(), std::string("<sensor type=\"perspective\"/>"),
+        std::string("<sensor type=\"perspective\"><film type=\"hdrfilm\"/></sensor>"),
+        std::string("<sensor type=\"perspective\"><sampler type=\"independent\"/></sensor>")}) {
     SCOPED_TRACE(sensor.empty() ? "no <sensor>" : sensor);
     auto scene = loadSceneFromString("<scene version=\"3.0.0\">" + sensor + lit + "</scene>", ".", options);
     ASSERT_TRUE(scene);
     EXPECT_EQ(scene->sensor().film().size(), Point2i(12, 7));
     EXPECT_EQ(scene->sensor().sampler().sampleCount(), 3u);
+  }
+  // A sensor nested in a shape is the scene's: no default camera beside it.
+  if (havePlugin("irradiancemeter") && havePlugin("rectangle")) {
+    auto nested = loadSceneFromString(
+        "<scene version=\"3.0.0\"><shape type=\"rectangle\"><sensor type=\"irradiancemeter\"/></shape>" + lit +
+            "</scene>",
+        ".", options);
+    EXPECT_NE(nested->sensor().toString().find("rradiance"), std::string::npos) << nested->sensor().toString();
+    EXPECT_EQ(nested->sensor().film().size(), Point2i(12, 7));
   }
   // Without overrides the defaults are Mitsuba's (768 x 576, 4 samples).
   auto plain = loadSceneFromString("<scene version=\"3.0.0\">" + lit + "</scene>", ".", {});

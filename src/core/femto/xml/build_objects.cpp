@@ -40,6 +40,15 @@ bool overridesReach(ObjectKind kind, const LoadOptions& options) {
   return false;
 }
 
+/// Whether `node` or anything inside it (following <ref>s) is a <tag>: a
+/// sensor nested in a shape counts as the scene's (render/scene.cpp).
+bool containsTag(const XmlNode& node, const std::string& tag) {
+  if (node.tag == tag) return true;
+  for (const auto& child : node.children)
+    if (containsTag(child.tag == "ref" && child.target ? *child.target : child, tag)) return true;
+  return false;
+}
+
 bool isOverridden(const std::vector<std::pair<std::string, int64_t>>& overrides, const std::string& name) {
   for (const auto& o : overrides)
     if (o.first == name) return true;
@@ -56,8 +65,8 @@ std::string describeUnnamedChild(const XmlNode& child, const XmlNode& object) {
     if (const std::string* value = object.attribute(attribute); value && !value->empty())
       tag += str(" ", attribute, "=\"", *value, "\"");
   tag += ">";
-  std::string where = object.location.file == child.location.file ? str("line ", object.location.line)
-                                                                   : object.location.toString();
+  std::string where =
+      object.location.file == child.location.file ? str("line ", object.location.line) : object.location.toString();
   return str(child.tag == "ref" ? "referenced " : "nested ", tag, " (", where, ")");
 }
 
@@ -87,11 +96,13 @@ Properties ObjectBuilder::properties(const XmlNode& node) {
       continue;
     }
     const XmlNode* objectNode = nullptr;
-    if (child.tag == "ref") objectNode = child.target;
-    else if (kindFromTag(child.tag) && child.tag != "scene") objectNode = &child;
+    if (child.tag == "ref")
+      objectNode = child.target;
+    else if (kindFromTag(child.tag) && child.tag != "scene")
+      objectNode = &child;
     if (!objectNode) {
-      throw sceneError(child, str("unsupported tag <", child.tag, ">",
-                                  child.tag == "scene" ? " (a <scene> cannot be nested)" : ""));
+      throw sceneError(
+          child, str("unsupported tag <", child.tag, ">", child.tag == "scene" ? " (a <scene> cannot be nested)" : ""));
     }
     // Objects at the top of the scene that something references belong to
     // their referrers (e.g. an area emitter attached to a shape by <ref>).
@@ -107,17 +118,18 @@ Properties ObjectBuilder::properties(const XmlNode& node) {
     }
   }
   for (const auto& [name, value] : overrides) props.setInt(name, value, node.location);
-  addOverriddenDefaults(*kind, props);
+  addOverriddenDefaults(*kind, props, &node);
   return props;
 }
 
-void ObjectBuilder::addOverriddenDefaults(ObjectKind kind, Properties& props) {
+void ObjectBuilder::addOverriddenDefaults(ObjectKind kind, Properties& props, const XmlNode* node) {
   for (const DefaultChild& d : DefaultChildren) {
     if (d.parent != kind || !props.objectsOfKind(d.child).empty() || !overridesReach(d.child, options_)) continue;
+    if (node && containsTag(*node, kindTag(d.child))) continue;
     Properties child(d.plugin);
     child.setLocation(props.location());
     for (const auto& [name, value] : overridesFor(d.child, options_)) child.setInt(name, value, props.location());
-    addOverriddenDefaults(d.child, child);
+    addOverriddenDefaults(d.child, child, nullptr);
     ObjectRef object;
     try {
       object = factory_.create(d.child, child);

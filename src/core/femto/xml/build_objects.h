@@ -40,8 +40,9 @@ class ObjectBuilder {
 
  private:
   /// Makes the default film, sampler or sensor that a command-line override
-  /// reaches and `props` lacks (see DefaultChildren in the .cpp).
-  void addOverriddenDefaults(ObjectKind kind, Properties& props);
+  /// reaches and `props` (made from `node`, when given) lacks anywhere
+  /// inside (see DefaultChildren in the .cpp).
+  void addOverriddenDefaults(ObjectKind kind, Properties& props, const XmlNode* node);
   /// Warn (or, when strict, throw) for parameters the object did not read.
   void reportUnused(const Properties& props, const XmlNode& node) const;
 
