@@ -45,11 +45,16 @@ sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  FEMTO_PLUGIN_PATH=build-asan/bin/plugins $(call SANITIZE_UNIT,build-asan)
 
-TSAN_FILTER ?= ThreadEdges.*:RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount*:TransientStreaming.*
+# The peak-memory test is left out: TSan's shadow memory is what it would measure.
+TSAN_FILTER ?= ThreadEdges.*:RenderLoop.*:TileSide.*:TransientBeams*:TransientPath*ThreadCount*:TransientStreaming.*:-TransientStreaming.VolumeLargerThanTheMemoryLimitIsWrittenWithBoundedPeakMemory
+# Plugins are dlopen'ed: GCC's built-in symbolizer leaves their frames
+# unnamed, which the suppressions then cannot match; llvm-symbolizer names them.
+TSAN_SYMBOLIZER = $(shell command -v llvm-symbolizer)
 sanitize-thread: deps
+	@command -v llvm-symbolizer >/dev/null || { echo "error: llvm-symbolizer is needed (apt-get install llvm)" >&2; exit 1; }
 	cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMTO_SANITIZE=thread
 	cmake --build build-tsan -j $(JOBS) --target femto_unit_tests femto_render
-	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tools/sanitize/tsan-tbb.supp \
+	TSAN_OPTIONS=external_symbolizer_path=$(TSAN_SYMBOLIZER):halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tools/sanitize/tsan-tbb.supp \
 	  FEMTO_PLUGIN_PATH=build-tsan/bin/plugins $(call SANITIZE_UNIT,build-tsan) --gtest_filter='$(TSAN_FILTER)'
 
 clean:

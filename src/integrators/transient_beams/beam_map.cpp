@@ -23,6 +23,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/math/bbox.h>
 #include <transient_beams/boundary_extension.h>
 
@@ -90,7 +91,9 @@ class Builder {
     auto left = [&] { build(begin, mid, base + 1, depth + 1); };
     auto right = [&] { build(mid, end, rightBase, depth + 1); };
     if (n > ParallelGrain) {
-      tbb::parallel_invoke(left, right);
+      ForkJoinEdges edges;  // for ThreadSanitizer (base/thread_edges.h)
+      tbb::parallel_invoke(edges.task(left), edges.task(right));
+      edges.join();
     } else {
       left();
       right();
