@@ -9,7 +9,11 @@
 #include <femto/math/constants.h>
 #include <femto/math/pcg32.h>
 #include <transient_beams/light_leak.h>
+#include <transient_beams/radius_probe.h>
 #include <transient_beams/ray_beam.h>
+
+#include "media_scene_generator.h"
+#include "media_test_util.h"
 
 namespace femto::beams {
 namespace {
@@ -168,6 +172,36 @@ TEST(LightLeak, RadiusMeetsTheTarget) {
   EXPECT_EQ(lightRadius(Infinity, 1.0), Infinity);
   EXPECT_EQ(lightRadius(0.1, 0.0), Infinity);
   EXPECT_EQ(lightRadius(std::nan(""), 1.0), Infinity);
+}
+
+}  // namespace
+}  // namespace femto::beams
+
+namespace femto::beams {
+namespace {
+
+TEST(LightLeak, GapIsTheDistanceToTheViewsEdge) {
+  // The closed-form sphere test's scene (test_transient_beams_closed_form.cpp):
+  // its light (1.2, 0.5, 0.3) lies outside the 30-degree view of a camera at
+  // (0, 0, -4) looking at the origin; the view's right side is the plane
+  // through the camera containing the y axis at x / (z + 4) = tan(15 deg),
+  // 0.0484 from the light (its distance to the film's border rays). Without
+  // beams (no medium boundary seen) the bound is lightRadius(0.0484, 1 / sigma_t).
+  test::MediaScene m;
+  m.model.bounded = true;
+  m.model.radius = 1.5, m.model.sigmaT = 1.0, m.model.sigmaS = 0.8, m.model.eta = 1.5;
+  m.model.light = Point3f(1.2f, 0.5f, 0.3f);
+  m.camera = Point3f(0.0f, 0.0f, -4.0f), m.target = Point3f(0.0f), m.fov = 30.0f;
+  m.windowFrom(m.model.eta * 0.25);
+  auto scene = test::loadSceneStrict(m.xml(R"(<integrator type="transient_beams"/>)"));
+  const double t = std::tan(15.0 * Pi / 180.0);
+  // Distance from the light to the plane x = t (z + 4), the nearer side.
+  const double gap = (t * (0.3 + 4.0) - 1.2) / std::sqrt(1.0 + t * t);
+  const auto probes = probeSegments(*scene, Infinity, true), edges = edgeProbeSegments(*scene, Infinity, true);
+  const double r = lightBoundRadius(*scene, {}, probes, edges), expected = lightRadius(std::abs(gap), 1.0);
+  std::printf("gap %.4f: light radius %.5f, from the plane %.5f\n", std::abs(gap), r, expected);
+  // The border rays are 0.009 apart at the light: the gap is 0.0002 long at most, the radius 0.5 % large.
+  EXPECT_NEAR(r, expected, 0.005 * expected);
 }
 
 }  // namespace
