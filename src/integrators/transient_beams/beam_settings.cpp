@@ -108,7 +108,7 @@ double spreadRadius(const std::vector<Beam>& beams, bool points, const BoundingB
 
 BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                               const TimeGrid& grid, const BoundingBox3f& sceneBounds,
-                                              DerivedRadius* chosen) const {
+                                              DerivedRadius* chosen, double lightBound) const {
   BeamSettings s = *this;
   if (s.radius > 0.0f) return s;
   DerivedRadius d;
@@ -120,12 +120,15 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   for (const Beam& b : beams) eta = std::max(eta, double(b.eta));
   d.time = timeRadius(grid, eta);
   // Not the extended bound (12.6x larger), though beams are extended past
-  // boundaries (boundary_extension.h): at that radius (0.145) the
-  // closed-form sphere test read +4.9 % (+3.8 % without the extension), a
-  // large-radius bias the rule does not bound yet (docs/photon-beams.md,
-  // "Boundary extension"). The extension lowers the loss at this radius.
+  // boundaries (boundary_extension.h). Its +4.9 % on the closed-form sphere
+  // test was the light's leak, now bounded by the light radius
+  // (light_leak.h), but at its radii the time bound decides on thick media
+  // and its 4-bin footprint spills into steep late tails beyond what the
+  // random media test allows (seed 2), and photon points are not extended
+  // (docs/photon-beams.md, "The kernel near a point light").
   d.boundary = boundaryRadius(probes, /*extended=*/false);
-  d.radius = std::min({d.density, d.time, d.boundary});
+  d.light = lightBound;
+  d.radius = std::min({d.density, d.time, d.boundary, d.light});
   // Nothing bounds it (a steady film, beams too few to reach the target, no
   // probes' boundary): the beams' spread.
   if (!std::isfinite(d.radius)) d.radius = std::min(spreadRadius(beams, points, sceneBounds), d.radius);

@@ -9,6 +9,7 @@
 #include <femto/base/error.h>
 #include <femto/core/properties.h>
 #include <femto/math/bbox.h>
+#include <femto/math/constants.h>
 #include <femto/render/path_depth.h>
 #include <transient_beams/beam.h>
 #include <transient_beams/radius_rule.h>
@@ -32,10 +33,10 @@ enum class VolumeEstimator {
   Points,
 };
 
-/// The derived beam radius and the three bounds it is the smallest of
+/// The derived beam radius and the four bounds it is the smallest of
 /// (+Infinity: no bound; BeamSettings::withBeamRadiusFrom).
 struct DerivedRadius {
-  double density = 0.0, time = 0.0, boundary = 0.0, radius = 0.0;
+  double density = 0.0, time = 0.0, boundary = 0.0, light = Infinity, radius = 0.0;
 };
 
 /// max_depth (the longest camera + photon path in segments, -1: no limit),
@@ -74,16 +75,19 @@ struct BeamSettings : PathDepthSettings {
   ///  * the time radius: a pair's OPL footprint stays within TimeBinFraction
   ///    bins of `grid` (none for steady films);
   ///  * the boundary radius: the kernel's loss where beams end stays below
-  ///    BoundaryBiasTarget of a camera segment's estimate.
+  ///    BoundaryBiasTarget of a camera segment's estimate;
+  ///  * the light radius `lightBound` (light_leak.h): the kernel's leak of a
+  ///    point light's singular density across the view's edge or its
+  ///    medium's boundary stays below LightBiasTarget.
   /// Without probes (no medium seen straight from the camera) the density
   /// radius falls back to the beams' spread (total length L in a bounding
   /// box of volume V: r = 2 H V^(2/3) / (pi L), photon points
   /// r = sqrt(H V^(2/3) / (pi P)); at most 1 % of the scene's diagonal).
   /// Deterministic: the beams are the same for a given seed on any thread
-  /// count, the probes fixed. `chosen`, if given, receives the three radii.
+  /// count, the probes fixed. `chosen`, if given, receives the four radii.
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                   const TimeGrid& grid, const BoundingBox3f& sceneBounds,
-                                  DerivedRadius* chosen = nullptr) const;
+                                  DerivedRadius* chosen = nullptr, double lightBound = Infinity) const;
 
   /// When the derived radius is below the density radius (the time or
   /// boundary bound decided) and the scene did not give beam_photon_count:

@@ -11,40 +11,65 @@
 
 namespace femto::beams {
 
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime) {
-  std::vector<ProbeSegment> probes;
+namespace {
+
+/// The camera ray through `filmPos` (aperture centre), followed straight
+/// through index-matched boundaries, its pieces inside media appended.
+void appendProbes(const Scene& scene, const Point2f& filmPos, double horizon, bool observerTime,
+                  std::vector<ProbeSegment>& probes) {
   const Sensor& sensor = scene.sensor();
-  const Film& film = sensor.film();
-  const Point2i offset = film.cropOffset(), size = film.cropSize();
-  for (int j = 0; j < ProbeGrid; ++j)
-    for (int i = 0; i < ProbeGrid; ++i) {
-      const Point2f filmPos(float(offset.x) + float(size.x) * (float(i) + 0.5f) / ProbeGrid,
-                            float(offset.y) + float(size.y) * (float(j) + 0.5f) / ProbeGrid);
-      Ray ray;
-      if (sensor.sampleRay(filmPos, Point2f(0.5f, 0.5f), ray).isBlack()) continue;
-      OpticalPath path;
-      path.ray = Ray(ray.o, ray.d);
-      path.vertex = ray.o;
-      path.medium = sensor.medium();
-      for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
-        SurfaceInteraction si;
-        const bool hit = scene.rayIntersect(path.ray, si);
-        if (path.medium) {
-          // As the camera tracer's segments (observer time off: no horizon on the first).
-          const float tMax = hit ? distance(path.vertex, si.p)
-                                 : unboundedSegmentLength(*path.medium, path.opl, observerTime ? horizon : Infinity);
-          if (tMax > 0.0f && std::isfinite(tMax)) {
-            ProbeSegment& p = probes.emplace_back();
-            p.segment.ray = Ray(path.vertex, path.ray.d);
-            p.segment.tMax = tMax;
-            p.segment.eta = observerTime ? path.medium->eta() : 0.0f;
-            p.medium = path.medium;
-          }
-        }
-        if (!hit || !path.advance(si.p, observerTime) || path.opl >= horizon || !isPassThrough(si)) break;
-        path.crossBoundary(si);
+  Ray ray;
+  if (sensor.sampleRay(filmPos, Point2f(0.5f, 0.5f), ray).isBlack()) return;
+  OpticalPath path;
+  path.ray = Ray(ray.o, ray.d);
+  path.vertex = ray.o;
+  path.medium = sensor.medium();
+  for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
+    SurfaceInteraction si;
+    const bool hit = scene.rayIntersect(path.ray, si);
+    if (path.medium) {
+      // As the camera tracer's segments (observer time off: no horizon on the first).
+      const float tMax = hit ? distance(path.vertex, si.p)
+                             : unboundedSegmentLength(*path.medium, path.opl, observerTime ? horizon : Infinity);
+      if (tMax > 0.0f && std::isfinite(tMax)) {
+        ProbeSegment& p = probes.emplace_back();
+        p.segment.ray = Ray(path.vertex, path.ray.d);
+        p.segment.tMax = tMax;
+        p.segment.eta = observerTime ? path.medium->eta() : 0.0f;
+        p.medium = path.medium;
       }
     }
+    if (!hit || !path.advance(si.p, observerTime) || path.opl >= horizon || !isPassThrough(si)) break;
+    path.crossBoundary(si);
+  }
+}
+
+}  // namespace
+
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime) {
+  std::vector<ProbeSegment> probes;
+  const Film& film = scene.sensor().film();
+  const Point2i offset = film.cropOffset(), size = film.cropSize();
+  for (int j = 0; j < ProbeGrid; ++j)
+    for (int i = 0; i < ProbeGrid; ++i)
+      appendProbes(scene,
+                   Point2f(float(offset.x) + float(size.x) * (float(i) + 0.5f) / ProbeGrid,
+                           float(offset.y) + float(size.y) * (float(j) + 0.5f) / ProbeGrid),
+                   horizon, observerTime, probes);
+  return probes;
+}
+
+std::vector<ProbeSegment> edgeProbeSegments(const Scene& scene, double horizon, bool observerTime) {
+  std::vector<ProbeSegment> probes;
+  const Film& film = scene.sensor().film();
+  const float x0 = float(film.cropOffset().x), y0 = float(film.cropOffset().y);
+  const float w = float(film.cropSize().x), h = float(film.cropSize().y);
+  for (int k = 0; k <= EdgeProbes; ++k) {
+    const float u = float(k) / EdgeProbes;
+    for (const Point2f& p :
+         {Point2f(x0 + u * w, y0), Point2f(x0 + u * w, y0 + h), Point2f(x0, y0 + u * h), Point2f(x0 + w, y0 + u * h)})
+      appendProbes(scene, p, horizon, observerTime, probes);
+  }
   return probes;
 }
 

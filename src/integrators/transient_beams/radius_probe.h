@@ -24,4 +24,13 @@ std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool
 
 constexpr int ProbeGrid = 8;
 
+/// Probes through the border of the film's crop window, EdgeProbes + 1 per
+/// side: the view's edge, which the light bound measures its gap to
+/// (light_leak.h). Deterministic.
+std::vector<ProbeSegment> edgeProbeSegments(const Scene& scene, double horizon, bool observerTime);
+
+/// Spacing of 1/256 of the film's side: on a 30-degree view 4.5 units away,
+/// 0.009 between rays, below the gaps that matter (a few radii of 0.01-0.1).
+constexpr int EdgeProbes = 256;
+
 }  // namespace femto::beams

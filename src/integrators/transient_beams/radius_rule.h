@@ -9,7 +9,10 @@
 //    stays within TimeBinFraction film bins, so that the blur it adds to the
 //    time profile stays below a bin's own (derivation at the constant);
 //  * boundary bias: the kernel's loss where beams end (medium boundaries,
-//    surfaces in media) stays below 0.4 % of what a camera segment gathers.
+//    surfaces in media) stays below 0.4 % of what a camera segment gathers;
+//  * and a fourth in light_leak.h: the kernel's leak of a point light's
+//    singular near field across the view's edge or its medium's boundary
+//    stays below 0.1 % of the light's single scattering.
 #include <limits>
 #include <vector>
 

@@ -27,7 +27,8 @@
 // |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
 // | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: the    | scene  |
 // |                |         |                | smallest of ~300 pass-0 beams per camera segment, a 4-bin |        |
-// |                |         |                | OPL footprint, 0.4 % boundary loss (radius_rule.h)        |        |
+// |                |         |                | OPL footprint, 0.4 % boundary loss (radius_rule.h), 0.1 % |        |
+// |                |         |                | leak near point lights (light_leak.h)                     |        |
 // | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
 // | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
@@ -58,6 +59,7 @@
 #include <femto/render/transient_integrator.h>
 #include <transient_beams/beam_pass.h>
 #include <transient_beams/beam_settings.h>
+#include <transient_beams/light_leak.h>
 #include <transient_beams/radius_probe.h>
 
 namespace femto {
@@ -148,9 +150,11 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
         if (pass == 0 && !(settings.radius > 0.0f)) {
           beams::DerivedRadius derived;
+          const auto probes = beams::probeSegments(scene, horizon, settings.observerTime);
+          const double light = beams::lightBoundRadius(scene, traced.beams, probes,
+                                                       beams::edgeProbeSegments(scene, horizon, settings.observerTime));
           settings =
-              settings.withBeamRadiusFrom(traced.beams, beams::probeSegments(scene, horizon, settings.observerTime),
-                                          filmTimeGrid(scene), scene.bbox(), &derived);
+              settings.withBeamRadiusFrom(traced.beams, probes, filmTimeGrid(scene), scene.bbox(), &derived, light);
           // A radius the film or the boundary made small gets more beams
           // (unless the scene gave their number): pass 0 is traced again.
           const beams::BeamSettings more = settings.withBeamsForRadius(derived);
@@ -159,8 +163,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
             traced = beams::tracePhotonPass(scene, settings, seed, horizon);
           }
           logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
-                  derived.time, ", boundary ", derived.boundary, "), ", settings.beamPhotons(),
-                  " beam photons per pass");
+                  derived.time, ", boundary ", derived.boundary, ", light ", derived.light, "), ",
+                  settings.beamPhotons(), " beam photons per pass");
         }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
       };
