@@ -6,6 +6,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <femto/base/thread_edges.h>
 #include <femto/core/log.h>
 #include <femto/render/mesh.h>
 #include <femto/render/shape.h>
@@ -20,10 +21,23 @@ void deviceError(void*, RTCError code, const char* message) {
 
 // --- user geometry callbacks for analytic shapes (one primitive per shape) ---
 
+// Embree calls userBounds on its own (TBB) threads while it builds a scene,
+// inside libembree where ThreadSanitizer sees no synchronisation: each shape
+// is handed over when it is attached, and what the callbacks did is handed
+// back to the thread whose rtcCommitScene returns (commit(); base/thread_edges.h).
+char builtScenes = 0;
+
+void commit(RTCScene scene) {
+  rtcCommitScene(scene);
+  acquireFrom(&builtScenes);
+}
+
 void userBounds(const RTCBoundsFunctionArguments* args) {
+  acquireFrom(args->geometryUserPtr);
   const auto* shape = static_cast<const Shape*>(args->geometryUserPtr);
   BoundingBox3f b = shape->bbox();
   *args->bounds_o = RTCBounds{b.min.x, b.min.y, b.min.z, 0.0f, b.max.x, b.max.y, b.max.z, 0.0f};
+  releaseTo(&builtScenes);
 }
 
 void userIntersect(const RTCIntersectFunctionNArguments* args) {
@@ -96,6 +110,7 @@ RTCGeometry newShapeGeometry(RTCDevice device, const Shape& shape) {
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, const_cast<Shape*>(&shape));
+    releaseTo(&shape);  // to userBounds on Embree's build threads
     rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
     rtcSetGeometryIntersectFunction(geom, userIntersect);
     rtcSetGeometryOccludedFunction(geom, userOccluded);
@@ -140,7 +155,7 @@ struct EmbreeAccel::Impl {
       gs.scene = newScene(device);
       for (const auto& shape : group.shapes())
         store(gs.byGeomId, attach(gs.scene, newShapeGeometry(device, *shape)), shape.get());
-      rtcCommitScene(gs.scene);
+      commit(gs.scene);
     }
     return gs;
   }
@@ -172,7 +187,7 @@ EmbreeAccel::EmbreeAccel(const std::vector<std::shared_ptr<Shape>>& shapes) : im
     }
     store(impl_->byGeomId, attach(impl_->scene, geom), entry);
   }
-  rtcCommitScene(impl_->scene);
+  commit(impl_->scene);
 }
 
 EmbreeAccel::~EmbreeAccel() {
