@@ -23,7 +23,7 @@ void reportUnusedDefines(const ExpandResult& expanded, const XmlNode& root, cons
 }  // namespace
 
 ParsedScene parseTree(XmlNode root, const fs::path& sceneDir, const LoadOptions& options) {
-  ParsedScene parsed{std::move(root), ExpandResult{FileResolver(sceneDir), {}, {}}, {}};
+  ParsedScene parsed{std::move(root), ExpandResult{FileResolver(sceneDir), {}, {}, {}}, {}};
   parsed.expanded = expandDirectives(parsed.root, sceneDir, options.defines);
   reportUnusedDefines(parsed.expanded, parsed.root, options);
   upgradeLegacyNames(parsed.root);
