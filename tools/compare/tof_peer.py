@@ -7,10 +7,14 @@ and their product per budget, printed as a Markdown table beside the peer's
 own measurements (quoted from the README: they were made on the peer's side).
 
   tools/compare/tof_peer.py [--femto build/bin/femto] [--passes 4,16] [--spp 2]
-      [-D radius=0.04 ...] [--out build/tof-peer]
+      [--seeds 1] [-D radius=0.04 ...] [--out build/tof-peer]
 
-The budget is the number of passes, each of --spp camera samples per pixel;
-everything else is transient_beams' default (the port's max_depth 64).
+The budget is the number of passes, each of --spp camera samples per pixel
+(ToF-Tungsten's runs took 1 camera sample per pass); everything else is
+transient_beams' default (the port's max_depth 64). With --seeds N each
+budget is rendered with seeds 1..N and the row gives the median CPU,
+relMSE and relMSE x CPU (one render's relMSE scatters by about 2x between
+seeds on this scene), with the range of relMSE x CPU.
 """
 import argparse
 import os
@@ -20,6 +24,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import media_suite  # noqa: E402  (the port's scene copy, render(), relmse())
+from provenance import commit, cpu_model, load_line  # noqa: E402
 
 # ToF-Tungsten's beams as its README reports them: (passes, CPU s, relMSE).
 PEER = [(4, 9.8, 24.5), (16, 32.1, 21.2), (64, 103.0, 4.09)]
@@ -30,6 +35,7 @@ def main(argv):
     p.add_argument("--femto", default=os.path.join(media_suite.ROOT, "build", "bin", "femto"))
     p.add_argument("--passes", default="4,16")
     p.add_argument("--spp", type=int, default=2)
+    p.add_argument("--seeds", type=int, default=1)
     p.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE")
     p.add_argument("--out", default=os.path.join(media_suite.ROOT, "build", "tof-peer"))
     args = p.parse_args(argv)
@@ -39,21 +45,33 @@ def main(argv):
     scene = media_suite.tof_scene(args.out)
     ref = np.load(os.path.join(media_suite.TOF, "reference.npy")).astype(np.float64)
     extra = dict(d.split("=", 1) for d in args.define)
+    load_start = os.getloadavg()
+    print(f"- machine: {cpu_model()}, {os.cpu_count()} logical CPUs, shared; commit {commit()}")
+    print(f"- command: `tools/compare/tof_peer.py {' '.join(argv)}`; CPU = user + system seconds of the femto process\n")
     print("| renderer | budget | CPU s | relMSE | relMSE × CPU | window sum / ref | radius | candidates / query | pair hits / query |")
     print("|---|---|---|---|---|---|---|---|---|")
     for passes, cpu, e in PEER:
         print(f"| ToF-Tungsten beams (its README) | {passes} passes | {cpu} | {e} | {cpu * e:.0f} | - | - | - | - |")
     for passes in [int(x) for x in args.passes.split(",")]:
         defines = dict(integrator="transient_beams", passes=passes, spp=args.spp, **extra)
-        out = os.path.join(args.out, f"beams-{passes}.exr")
-        npy, cpu, wall, log = media_suite.render(args.femto, scene, out, defines, seed=1)
-        x = np.load(npy).astype(np.float64)
-        e = media_suite.relmse(x, ref)
+        runs = []
+        for seed in range(1, args.seeds + 1):
+            out = os.path.join(args.out, f"beams-{passes}-{seed}.exr")
+            npy, cpu, wall, log = media_suite.render(args.femto, scene, out, defines, seed=seed)
+            x = np.load(npy).astype(np.float64)
+            runs.append((cpu, media_suite.relmse(x, ref), x.sum() / ref.sum(), log))
+        cpu = float(np.median([r[0] for r in runs]))
+        e = float(np.median([r[1] for r in runs]))
+        products = [r[0] * r[1] for r in runs]
+        log = runs[0][3]
         m, r = media_suite.STATS.search(log), media_suite.RADIUS.search(log)
         note = ", ".join(f"{k}={v}" for k, v in extra.items())
+        spread = f" ({min(products):.0f}-{max(products):.0f}, {len(runs)} seeds)" if len(runs) > 1 else ""
+        sums = "/".join(f"{r[2]:.3f}" for r in runs)
         print(f"| femto transient_beams{' (' + note + ')' if note else ''} | {passes} passes × {args.spp} spp | "
-              f"{cpu:.1f} | {e:.3g} | {cpu * e:.0f} | {x.sum() / ref.sum():.3f} | {r.group(1) if r else '-'} | "
-              f"{m.group(1) if m else '-'} | {m.group(2) if m else '-'} |", flush=True)
+              f"{cpu:.1f} | {e:.3g} | {float(np.median(products)):.0f}{spread} | {sums} | "
+              f"{r.group(1) if r else '-'} | {m.group(1) if m else '-'} | {m.group(2) if m else '-'} |", flush=True)
+    print("\n" + load_line(load_start, os.getloadavg()))
     return 0
 
 
