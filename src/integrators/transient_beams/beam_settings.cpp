@@ -129,6 +129,11 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   // boundary bound for beams").
   d.boundary = boundaryRadius(probes, /*extended=*/!points);
   d.light = lightBound;
+  // Beams: the time bound made to hold for oblique pairs, whose footprint
+  // along the camera segment is up to 1 / sin(theta) longer (radius_rule.h).
+  // Photon points have no such pairs (a point's kernel is a ball).
+  if (!points)
+    d.time = obliqueTimeRadius(beams, probes, grid, eta, std::min({d.density, d.boundary, d.light}));
   d.radius = std::min({d.density, d.time, d.boundary, d.light});
   // Nothing bounds it (a steady film, beams too few to reach the target, no
   // probes' boundary): the beams' spread.
