@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include <femto/math/constants.h>
+#include <femto/render/medium.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 namespace {
@@ -77,6 +79,62 @@ double timeRadius(const TimeGrid& grid, double eta) {
   // A pair crossing the beam's axis perpendicularly covers a chord 2r, OPL
   // 2 eta r (ray_beam.h): at most TimeBinFraction bins.
   return TimeBinFraction * grid.binWidth / (2.0 * eta);
+}
+
+double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
+                         const TimeGrid& grid, double eta, double upper) {
+  const double perpendicular = timeRadius(grid, eta);
+  const double hi = std::min(upper, perpendicular);
+  if (!std::isfinite(hi) || !(hi > 0.0) || probes.empty() || beams.empty()) return perpendicular;
+  // The pairs within hi: every stride-th beam, as densityRadius.
+  const size_t budget = std::max<size_t>(1, MaxDistancePairs / probes.size());
+  const size_t stride = (beams.size() + budget - 1) / budget;
+  struct Pair {
+    const ProbeSegment* probe;
+    const Beam* beam;
+    double distance;
+  };
+  std::vector<Pair> pairs;
+  for (const ProbeSegment& p : probes)
+    for (size_t i = 0; i < beams.size(); i += stride) {
+      const Beam& b = beams[i];
+      if (b.medium != p.medium) continue;
+      const double d =
+          segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction, b.length);
+      if (d < hi) pairs.push_back({&p, &b, d});
+    }
+  // E[W^2] at radius r over the pairs' expected contributions: the kernel
+  // times the beam's power, attenuated at the majorant along the beam and
+  // the probe (exact for homogeneous media; the phase function and sigma_s
+  // are left out, the same for every pair of a medium with an isotropic one).
+  auto meanSquare = [&](double r) {
+    double sum = 0.0, weights = 0.0;
+    for (const Pair& p : pairs) {
+      if (!(p.distance < r)) continue;
+      RayBeamHit hit;
+      if (!rayBeamIntersect(p.probe->segment, *p.beam, float(r), hit)) continue;
+      const double sigma = p.beam->medium ? double(p.beam->medium->majorant().average()) : 0.0;
+      const double w = double(hit.kernel) * double(p.beam->power.average()) *
+                       std::exp(-sigma * (double(hit.tRay) + double(hit.tBeam)));
+      if (!(w > 0.0) || !std::isfinite(w)) continue;
+      const double width = hit.oplEnd - hit.oplBegin;
+      sum += w * width * width, weights += w;
+    }
+    return weights > 0.0 ? sum / weights : 0.0;
+  };
+  // A perpendicular pair at the perpendicular bound: W = 2 eta r sqrt(1 -
+  // (d/r)^2), E_d[W^2] = (8/3) eta^2 r^2 = (2/3) (K bins)^2.
+  const double allowed = (2.0 / 3.0) * std::pow(TimeBinFraction * grid.binWidth, 2);
+  if (meanSquare(hi) <= allowed) return perpendicular;
+  // E[W^2] grows with r (about as r^2, slower where chords are clipped):
+  // bisection in log r.
+  double lo = hi * 1e-3, up = hi;
+  if (meanSquare(lo) > allowed) return lo;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = std::sqrt(lo * up);
+    (meanSquare(mid) <= allowed ? lo : up) = mid;
+  }
+  return lo;
 }
 
 double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended) {

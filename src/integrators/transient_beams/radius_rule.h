@@ -1,13 +1,15 @@
 #pragma once
 // How wide the first pass's beam kernel is when the scene does not say
-// (docs/photon-beams.md, "Derived beam radius"): the smallest of three radii,
+// (docs/photon-beams.md, "Derived beam radius"): the smallest of four radii,
 // each from what the render needs rather than from the scene's size.
 //  * density: the radius at which a camera segment meets TargetPairHits beams
 //    on average, counted on probe segments (camera rays through the film,
 //    radius_probe.h) against the beams actually traced: a k-nearest estimate;
-//  * time: a pair's OPL footprint (about 2 eta r across the beam, ray_beam.h)
-//    stays within TimeBinFraction film bins, so that the blur it adds to the
-//    time profile stays below a bin's own (derivation at the constant);
+//  * time: a pair's OPL footprint (2 eta r across the beam, ray_beam.h; for
+//    beams up to 1 / sin(theta) longer at angle theta to the camera segment,
+//    obliqueTimeRadius) stays within TimeBinFraction film bins, so that the
+//    blur it adds to the time profile stays below a bin's own (derivation
+//    at the constant);
 //  * boundary bias: the kernel's loss where beams end (medium boundaries,
 //    surfaces in media) stays below 0.4 % of what a camera segment gathers;
 //  * and a fourth in light_leak.h: the kernel's leak of a point light's
@@ -43,6 +45,17 @@ double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegm
 /// of `grid` at refractive index `eta` (+Infinity for steady films).
 double timeRadius(const TimeGrid& grid, double eta);
 
+/// The time bound made to hold for oblique pairs (derivation at
+/// TimeBinFraction): the largest radius r <= min(upper, timeRadius(grid,
+/// eta)) at which the pairs the probes meet among `beams` keep the second
+/// moment of their OPL footprint, E[W^2] weighted by each pair's expected
+/// contribution, within that of a perpendicular pair at the perpendicular
+/// bound, (2/3) (TimeBinFraction bins)^2. timeRadius when that holds there or
+/// nothing gives pairs (no probes, no beams near them); +Infinity for steady
+/// films. Deterministic.
+double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
+                         const TimeGrid& grid, double eta, double upper);
+
 /// Largest radius whose boundary loss stays below BoundaryBiasTarget of a
 /// camera segment's estimate, from the probes' mean length in media
 /// (+Infinity without probes); `extended`: beams are extended past
@@ -61,9 +74,25 @@ constexpr size_t MaxDistancePairs = 1 << 20;
 /// about the standard deviation of a 3.3-bin box, so a feature of time
 /// scale tau (|f''/f| ~ 1 / tau^2) is off by at most sigma^2 / (2 tau^2) <
 /// 0.5 % once tau >= 10 sigma ~ 9.4 bins, and the blur shrinks with the
-/// radius per pass (r_i ~ i^(alpha - 1)). K = 1 (the earlier rule) made the
-/// radius 4-12x smaller than the efficient one on the media suite
-/// (docs/photon-beams.md, "Derived beam radius": radius sweeps).
+/// radius per pass (r_i ~ i^(alpha - 1)).
+/// Oblique pairs (obliqueTimeRadius; docs/photon-beams.md, "The time bound
+/// for oblique pairs"): a pair at angle theta (cos theta = w.v) covers a
+/// chord c = 2 sqrt(r^2 - d^2) / sin(theta) of the camera segment (clipped to
+/// the beam's slab and the segment), along which the OPL runs at rate
+/// eta_c + eta_b cos(theta): W = c |eta_c + eta_b cos(theta)|. Summed over
+/// pairs (chords placed uniformly along the segment) the estimate is the
+/// true profile with its weight along the segment box-averaged over c: a
+/// blur of width W in time, variance W^2 / 12. With d uniform (the 1D
+/// kernel), E_d[W^2] = (8/3) r^2 (eta_c + eta_b cos(theta))^2 / sin^2(theta):
+/// (8/3) eta^2 r^2 perpendicular, unbounded (log-divergent over isotropic
+/// directions, cut only by the clipping) for pairs near parallel with the
+/// light moving away from the camera, small near anti-parallel. The rule
+/// bounds the contribution-weighted E[W^2] by the perpendicular pair's at
+/// K bins, (2/3) K^2 bins^2, and keeps the perpendicular bound itself (the
+/// beams' own lateral offset d adds up to eta d in any direction).
+/// K = 1 (the earlier rule) made the radius 4-12x smaller than the efficient
+/// one on the media suite (docs/photon-beams.md, "Derived beam radius":
+/// radius sweeps).
 constexpr double TimeBinFraction = 4.0;
 /// Relative loss per unit r / length at the two ends of a camera segment
 /// (4 / (3 pi), derivation in docs/photon-beams.md) times 2 for light

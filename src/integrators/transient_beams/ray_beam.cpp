@@ -114,8 +114,23 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   // uniform over [g(tBegin), g(tEnd)], is that line, never earlier than g,
   // and by the triangle inequality never before the earliest path
   // b -> x(t) -> ray.o.
-  const double oplA = double(segment.eta) * tBegin + double(beam.eta) * startDistance(delta, w, tBegin);
-  const double oplB = double(segment.eta) * tEnd + double(beam.eta) * startDistance(delta, w, tEnd);
+  // A beam extended before its start (boundary_extension.h: it entered its
+  // medium or left a surface at b) is timed from the extension's start
+  // b - e v, e = before r, at the OPL its light would have there, beam.opl -
+  // eta_b e: for points on the extension (s < 0) that is the continuation
+  // beam.opl + eta_b s, the time of the real beams the extension stands for
+  // (across a planar boundary the tangential gradient of the arrival time is
+  // continuous, Snell's phase matching, so the neighbours that enter or
+  // leave the boundary near x arrive there at beam.opl + eta_b s(x));
+  // measured from b instead (|x - b| = |s| + ...) it was 2 eta_b |s| late,
+  // up to 32 eta_b r for grazing beams: issue 14's random media seed 2 put
+  // energy 5+ bins after the latest arrival at r = 0.083
+  // (docs/photon-beams.md, "Timing the extension before a beam's start").
+  const float extension = beam.before * r;
+  const Vec3f fromStart = delta + v * extension;  // x(t) - (b - e v) = fromStart + t w
+  const double shift = -double(beam.eta) * double(extension);
+  const double oplA = shift + double(segment.eta) * tBegin + double(beam.eta) * startDistance(fromStart, w, tBegin);
+  const double oplB = shift + double(segment.eta) * tEnd + double(beam.eta) * startDistance(fromStart, w, tEnd);
   hit.oplBegin = std::min(oplA, oplB);
   hit.oplEnd = std::max(oplA, oplB);
 

@@ -23,8 +23,9 @@
 //    overlap with it is [tRayBegin, tRayEnd] = chord of the infinite cylinder
 //    (|x(t) - axis| < r, a quadratic in t) clipped to the slab
 //    -before r <= s(t) = (x(t) - b).v <= length + after r (the beam's
-//    extensions past boundaries, boundary_extension.h; 0 for most beams)
-//    and to [0, tMax].
+//    extensions past boundaries, boundary_extension.h; 0 for most beams;
+//    the one before the start is timed as the beam's continuation,
+//    ray_beam.cpp) and to [0, tMax].
 //  * OPL along the overlap: OPL(t) = segment.eta t + beam.eta s(t), linear in
 //    t with rate segment.eta + beam.eta cos(theta). With equal indices a pair
 //    whose beam travels toward the camera (w = -v, "anti-parallel") keeps the

@@ -27,8 +27,9 @@
 // |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
 // | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: the    | scene  |
 // |                |         |                | smallest of ~300 pass-0 beams per camera segment, a 4-bin |        |
-// |                |         |                | OPL footprint, 0.4 % boundary loss (radius_rule.h), 0.1 % |        |
-// |                |         |                | leak near point lights (light_leak.h)                     |        |
+// |                |         |                | OPL footprint (oblique pairs too), 0.4 % boundary loss    |        |
+// |                |         |                | (beams: past their extensions; radius_rule.h), 0.1 % leak |        |
+// |                |         |                | near point lights (light_leak.h)                          |        |
 // | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
 // | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |

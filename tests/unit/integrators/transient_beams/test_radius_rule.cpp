@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <femto/math/pcg32.h>
 #include <transient_beams/radius_rule.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 namespace {
@@ -67,6 +69,82 @@ TEST(RadiusRule, TimeAndBoundaryRadiiFollowTheirFormulas) {
               1e-12)
       << "beams extended past boundaries leave BoundaryLossLeft of the loss";
   EXPECT_FALSE(std::isfinite(boundaryRadius({})));
+}
+
+
+/// Probes along +z and beams at angle `theta` to them (azimuth random),
+/// passing within 0.1 of a probe's middle: the pairs obliqueTimeRadius sees.
+void obliqueScene(double theta, std::vector<Beam>& beams, std::vector<ProbeSegment>& probes) {
+  PCG32 rng(7, uint64_t(theta * 1000));
+  probes.assign(16, ProbeSegment{});
+  for (int i = 0; i < 16; ++i) {
+    probes[size_t(i)].segment.ray = Ray(Point3f(float(i), 0.0f, 0.0f), Vec3f(0.0f, 0.0f, 1.0f));
+    probes[size_t(i)].segment.tMax = 2.0f, probes[size_t(i)].segment.eta = 1.3f;
+  }
+  beams.clear();
+  for (int i = 0; i < 16; ++i)
+    for (int k = 0; k < 400; ++k) {
+      const float phi = 6.2831853f * rng.nextFloat();
+      Beam b;
+      b.direction = Vec3f(float(std::sin(theta)) * std::cos(phi), float(std::sin(theta)) * std::sin(phi),
+                          float(std::cos(theta)));
+      // Through a point 0.1 around the probe's middle, starting 0.75 before it.
+      const Point3f through(float(i) + 0.2f * (rng.nextFloat() - 0.5f), 0.2f * (rng.nextFloat() - 0.5f), 1.0f);
+      b.origin = through - b.direction * 0.75f, b.length = 1.5f, b.eta = 1.3f, b.power = Color3f(1.0f);
+      beams.push_back(b);
+    }
+}
+
+/// The pairs' OPL footprints at radius r: E[W^2] weighted by the kernel
+/// (every beam has power 1, no medium: no attenuation), as the rule weighs them.
+double footprintMeanSquare(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double r) {
+  double sum = 0.0, weights = 0.0;
+  for (const ProbeSegment& p : probes)
+    for (const Beam& b : beams) {
+      RayBeamHit h;
+      if (!rayBeamIntersect(p.segment, b, float(r), h)) continue;
+      sum += h.kernel * (h.oplEnd - h.oplBegin) * (h.oplEnd - h.oplBegin), weights += h.kernel;
+    }
+  return sum / weights;
+}
+
+// Oblique pairs (radius_rule.h, TimeBinFraction): beams at 15 degrees to the
+// camera segments, the light moving away from the camera, cover chords
+// 1/sin(15 deg) = 3.9x and OPL rates 1.97x the perpendicular pair's: at the
+// perpendicular bound (the rule before issue 14's oblique step) their mean
+// squared footprint is many times a perpendicular pair's at K bins, (2/3)
+// (K bins)^2; the oblique bound brings it back to that. Perpendicular and
+// near-anti-parallel beams (a footprint factor (1 + cos) / sin below 1) keep
+// the perpendicular bound.
+TEST(RadiusRule, ObliquePairsKeepThePerpendicularFootprint) {
+  TimeGrid grid;
+  grid.bins = 100, grid.binWidth = 0.01;
+  const double eta = 1.3, perpendicular = timeRadius(grid, eta);
+  const double allowed = (2.0 / 3.0) * std::pow(TimeBinFraction * grid.binWidth, 2);
+  std::vector<Beam> beams;
+  std::vector<ProbeSegment> probes;
+  obliqueScene(15.0 * 3.14159265358979 / 180.0, beams, probes);
+  const double atPerpendicular = footprintMeanSquare(beams, probes, perpendicular);
+  EXPECT_GT(atPerpendicular, 8.0 * allowed) << "the perpendicular bound lets oblique footprints grow";
+  const double oblique = obliqueTimeRadius(beams, probes, grid, eta, Infinity);
+  EXPECT_LT(oblique, 0.4 * perpendicular);
+  const double atOblique = footprintMeanSquare(beams, probes, oblique);
+  std::printf("15 degrees: perpendicular bound %.4g (E[W^2] / allowed %.3g), oblique bound %.4g (%.3g)\n",
+              perpendicular, atPerpendicular / allowed, oblique, atOblique / allowed);
+  EXPECT_LE(atOblique, 1.001 * allowed);
+  EXPECT_GE(atOblique, 0.8 * allowed) << "not smaller than it needs to be";
+  // Below the other bounds (`upper`) the time bound does not bind: perpendicular.
+  EXPECT_EQ(obliqueTimeRadius(beams, probes, grid, eta, 0.5 * oblique), perpendicular);
+  // Perpendicular beams: E[W^2] is the perpendicular pair's, up to the
+  // sample's lateral offsets (not exactly uniform): within 3 %. Near
+  // anti-parallel: well below it, the perpendicular bound stays.
+  for (double degrees : {90.0, 170.0}) {
+    obliqueScene(degrees * 3.14159265358979 / 180.0, beams, probes);
+    EXPECT_NEAR(obliqueTimeRadius(beams, probes, grid, eta, Infinity), perpendicular, 0.03 * perpendicular)
+        << degrees << " degrees";
+  }
+  EXPECT_FALSE(std::isfinite(obliqueTimeRadius(beams, probes, TimeGrid{}, eta, Infinity))) << "steady films";
+  EXPECT_EQ(obliqueTimeRadius({}, probes, grid, eta, Infinity), perpendicular) << "no beams: the perpendicular bound";
 }
 
 }  // namespace

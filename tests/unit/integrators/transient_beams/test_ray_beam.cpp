@@ -357,6 +357,36 @@ TEST(RayBeam, ParallelPairsSpreadWidest) {
   EXPECT_NEAR(previousRate, 2.0, 1e-5);
 }
 
+// A beam extended before its start (boundary_extension.h: before = 8, a
+// beam entering its medium at 7 degrees from the boundary) is timed as its
+// own continuation: a camera segment crossing it perpendicularly at beam
+// parameter s (s < 0 on the extension) deposits around eta_c t_c + eta_b s,
+// measured from the extension's start b - e v at the OPL -eta_b e (up to the
+// lateral path eta_b gap^2 / (2 (s + e)), at most eta_b r at s = -e). Timed
+// from b (the code before issue 14's oblique step) the extension arrived
+// 2 eta_b |s| late: up to 32 eta_b r behind the real beams it stands for.
+TEST(RayBeam, ExtensionBeforeTheStartIsTimedAsTheBeamsContinuation) {
+  const float r = 0.05f, etaB = 1.3f, etaC = 1.2f;
+  Beam beam;
+  beam.origin = Point3f(0.0f), beam.direction = Vec3f(0.0f, 0.0f, 1.0f), beam.length = 1.0f, beam.eta = etaB;
+  beam.before = 8.0f;
+  const double e = beam.before * r;
+  int crossings = 0;
+  for (double s = -e + 0.25 * r; s <= 2.0 * r; s += 0.25 * r) {
+    CameraSegment seg;
+    seg.ray = Ray(Point3f(-1.0f, 0.3f * r, float(s)), Vec3f(1.0f, 0.0f, 0.0f));
+    seg.tMax = 2.0f, seg.eta = etaC;
+    RayBeamHit h;
+    ASSERT_TRUE(rayBeamIntersect(seg, beam, r, h)) << s;
+    ++crossings;
+    const double middle = 0.5 * (h.oplBegin + h.oplEnd), continuation = etaC * 1.0 + etaB * s;
+    const double lateral = etaB * std::min(double(r), double(r) * r / (2.0 * (s + e)));
+    EXPECT_NEAR(middle, continuation, lateral + 1e-4) << "s = " << s;
+    EXPECT_LE(h.oplEnd - h.oplBegin, 2.0 * etaC * r + lateral + 1e-4) << "perpendicular: a chord of 2 r at most";
+  }
+  EXPECT_GE(crossings, 36);
+}
+
 // --- Causality -------------------------------------------------------------
 
 /// Smallest distance from `q` to the points ray.o + t ray.d, t in [t0, t1].
