@@ -47,7 +47,22 @@
 // same density, so the estimate stays unbiased for any window; segments that
 // cannot reach the window spend no equiangular vertex at all. A short window
 // late in time then gets one next-event estimate per segment that lands in it,
-// where free flights put only a small share of theirs there. Off by default:
+// where free flights put only a small share of theirs there. Free flights are
+// truncated by the residual time (transport/time_gate.h, gateReach): past
+// the distance from which even a straight connection to the nearest light
+// arrives at or after the gate's end, nothing the path does can land before
+// it (triangle inequality, refractive indices >= 1, delays only add), so in
+// a homogeneous medium the free flight is conditioned on scattering before
+// that distance and weighted by the probability that it does (the surface
+// beyond is never reached), and in a heterogeneous one tracked only up to it
+// (a path that passes it ends); paths also end at a vertex whose OPL plus
+// the distance to the nearest light reaches the gate's end. Lights not at a
+// point (area, environment, directional) give no distance: then only the
+// residual OPL bounds the reach. The gate's end is the recorder's horizon,
+// so the steady image and _before/_after keep what they record (their
+// expectations are unchanged); the horizon alone only ended a path once its
+// own OPL had passed it. The camera segment without observer time is not
+// truncated (its OPL does not count). Off by default:
 // with it the samples depend on the window, so a render split into windows is
 // equal to one render within noise only, not bit for bit
 // (test_transient_time_window_split.cpp). Paths end by
@@ -83,7 +98,7 @@
 // only, for comparisons) | - | | light_directions | boolean | true   | a second next-event vertex per scattering
 // vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | -
 // | | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time
-// window | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
+// window, truncate free flights past it | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
 // temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | -
 // | | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins | |
 // discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray)
@@ -119,6 +134,22 @@
 namespace femto {
 namespace {
 
+/// Residual-time truncation of one medium segment (time gating): past
+/// `reach` a vertex cannot contribute before the gate ends
+/// (transport/time_gate.h, gateReach); `probability` is free flights' chance
+/// to scatter before it (homogeneous media). Inactive when reach >= the
+/// segment's length.
+struct GatedSegment {
+  float reach = Infinity;
+  float probability = 1.0f;
+  bool truncates(float tMax) const { return reach < tMax; }
+  /// Density of the (truncated) free flight at t, given the untruncated one.
+  float pdf(float tMax, float t, float freeFlightPdf) const {
+    if (!truncates(tMax)) return freeFlightPdf;
+    return t < reach && probability > 0.0f ? freeFlightPdf / probability : 0.0f;
+  }
+};
+
 /// The mutable state of one camera path: where it is and its OPL there
 /// (OpticalPath: ray, vertex, opl, medium, surfaceEta), and what it carries.
 struct PathState : OpticalPath {
@@ -149,6 +180,11 @@ struct PathState : OpticalPath {
   // the segment starts when it counts toward the OPL (else -Infinity: no gate).
   OplGate gate;
   double segmentStartOpl = -Infinity;
+  // Residual-time truncation (time gating): where the lights are, and the
+  // distance along the current medium segment past which nothing reaches the
+  // gate (GatedSegment).
+  LightBound lights;
+  GatedSegment gated;
 };
 
 }  // namespace
@@ -186,7 +222,10 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
     s.vertex = s.prev.p = cameraRay.o;
-    if (timeGating_) s.gate = oplGate(scene, recorder);
+    if (timeGating_) {
+      s.gate = oplGate(scene, recorder);
+      s.lights = lightBound(scene);
+    }
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
@@ -194,13 +233,13 @@ class TransientPathIntegrator : public TransientIntegrator {
       if (s.medium) {
         beginMediumSegment(s, hit ? si.t : Infinity);
         if (s.equiangular) nextEventEquiangular(scene, s, sampler, recorder);
-        ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
+        ms = sampleFreeFlight(s, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
         if (!ms.scattered) passSegment(s, hit ? si.t : Infinity, sampler);
       }
       if (ms.scattered) {
-        if (!advance(s, ms.p) || s.opl >= horizon) return;
+        if (!advance(s, ms.p) || s.opl >= horizon || pastGate(s)) return;
         if (!scatterInMedium(scene, s, ms.p, ms.t, sampler, recorder)) return;
         passThrough = 0;
         continue;
@@ -212,6 +251,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       }
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
+      if (pastGate(s)) return;
       s.equiangular = false;
       if (isPassThrough(si)) {
         s.crossBoundary(si);
@@ -281,7 +321,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       weight = powerHeuristic(1.0f, lightDirectedRatio(s, lightPosition), 0.0f);
     } else if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
       float equiangular = pdfEquiangular(equiangularToward(s, lightPosition), segmentT);
-      weight = powerHeuristic(s.medium->freeFlightPdf(segmentT), equiangular,
+      weight = powerHeuristic(freeFlightPdf(s, segmentT), equiangular,
                               equiangular * lightDirectedRatio(s, lightPosition));
     }
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
@@ -295,6 +335,64 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
     s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
+    s.gated = gatedSegment(s.gate, s.lights, s.ray, s.vertex, tMax, *s.medium, s.segmentStartOpl);
+  }
+
+  /// Residual-time truncation of the medium segment [0, tMax] of `ray`
+  /// (whose origin may be offset from the exact `vertex`, at OPL `startOpl`):
+  /// see GatedSegment. The offset is added to the OPL still available, so
+  /// the reach stays a bound for the exact vertex.
+  static GatedSegment gatedSegment(const OplGate& gate, const LightBound& lights, const Ray& ray,
+                                   const Point3f& vertex, float tMax, const Medium& medium, double startOpl) {
+    GatedSegment g;
+    if (!gate.gates()) return g;
+    double eta = medium.eta();
+    double reach = gateReach(ray, eta, startOpl - eta * double(distance(vertex, ray.o)), gate, lights);
+    if (!(reach < double(tMax))) return g;
+    g.reach = float(reach);
+    if (medium.isHomogeneous()) g.probability = scatterProbabilityBefore(medium, g.reach);
+    return g;
+  }
+
+  /// The free flight along the current medium segment [0, tMax]. With a
+  /// residual-time truncation short of tMax (GatedSegment), in homogeneous
+  /// media conditioned to scatter before the reach, weighted by the
+  /// probability of doing so; in heterogeneous media tracked up to the
+  /// reach only, and a path that passes it ends (zero weight): beyond it
+  /// nothing arrives before the gate ends.
+  MediumSample sampleFreeFlight(const PathState& s, float tMax, Sampler& sampler) const {
+    if (!s.gated.truncates(tMax)) return s.medium->sampleDistance(s.ray, tMax, sampler);
+    if (s.medium->isHomogeneous()) return sampleFreeFlightBefore(*s.medium, s.ray, s.gated.reach, sampler);
+    MediumSample ms = s.medium->sampleDistance(s.ray, s.gated.reach, sampler);
+    if (!ms.scattered) ms.weight = Color3f(0.0f);
+    return ms;
+  }
+
+  /// Density of the free-flight vertex at distance t on the current
+  /// (homogeneous) segment, truncated or not (MIS against equiangular vertices).
+  static float freeFlightPdf(const PathState& s, float t) {
+    return s.gated.pdf(s.segmentMax, t, s.medium->freeFlightPdf(t));
+  }
+
+  /// Whether the path's vertex can no longer contribute before the gate ends
+  /// (time gating: OPL + distance to the nearest light, time_gate.h).
+  static bool pastGate(const PathState& s) {
+    return s.gate.gates() && femto::pastGate(s.vertex, s.opl, s.gate, s.lights);
+  }
+
+  /// The scene's lights for residual-time truncation (LightBound).
+  static LightBound lightBound(const Scene& scene) {
+    LightBound bound;
+    bound.anywhere = false;
+    for (const auto& emitter : scene.emitters()) {
+      Point3f p;
+      if (!emitter->deltaPosition(p) || bound.count == LightBound::MaxPoints) {
+        bound.anywhere = true;
+        break;
+      }
+      bound.points[bound.count++] = p;
+    }
+    return bound;
   }
 
   /// The OPLs (for a Dirac emission at 0) from which a contribution can reach
@@ -409,11 +507,13 @@ class TransientPathIntegrator : public TransientIntegrator {
       bool hitSurface = scene.rayIntersect(ray, hit);
       float tMax = hitSurface ? hit.t : Infinity;
       if (medium) {
-        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, crossing == 0 ? uDistance : sampler.next1D(), sampler,
-                            recorder);
+        GatedSegment gated = gatedSegment(s.gate, s.lights, ray, start, tMax, *medium, opl);
+        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, gated,
+                            crossing == 0 ? uDistance : sampler.next1D(), sampler, recorder);
         Color3f tr = medium->transmittance(ray, tMax, sampler);
         l.weight *= tr;
-        l.passProbability *= tr.average();
+        // The path's own free flights end within a truncated segment (sampleFreeFlight).
+        l.passProbability *= gated.truncates(tMax) ? 0.0f : tr.average();
         l.crossedMedium = true;
       }
       if (!hitSurface || l.weight.isBlack()) return;
@@ -448,8 +548,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// direction's own sampling would give on the same segment (densities
   /// vertexPdf * passProbability times p_ff(t) or p_eq(t)).
   void lightDirectedVertex(const Scene& scene, const PathState& s, const LightDirected& l, const Ray& ray, float tMax,
-                           const Medium& medium, double startOpl, float uDistance, Sampler& sampler,
-                           RadianceRecorder& recorder) const {
+                           const Medium& medium, double startOpl, const GatedSegment& gated, float uDistance,
+                           Sampler& sampler, RadianceRecorder& recorder) const {
     EquiangularSegment seg = equiangularToward(ray, tMax, medium, s.gate, startOpl, l.lightPosition);
     if (!seg.valid()) return;
     float pdf = 0.0f;
@@ -473,7 +573,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (c.transmittance.isBlack()) return;
     // Densities of the three strategies for this vertex, divided by the common p_eq(t) / t^2.
     float own = l.vertexPdf * l.passProbability;
-    float weight = powerHeuristic(l.lightPdf, own, own * medium.freeFlightPdf(t) / pdf);
+    float weight = powerHeuristic(l.lightPdf, own, own * gated.pdf(tMax, t, medium.freeFlightPdf(t)) / pdf);
     recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
                        l.emitter->pulse());
   }
@@ -543,7 +643,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = powerHeuristic(pdf, s.medium->freeFlightPdf(t), pdf * lightDirectedRatio(s, lightPosition));
+    float weight = powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition));
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
   }
@@ -554,7 +654,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     const PhaseFunction& phase = s.medium->phase();
     if (phase.hasDelay()) {
       s.opl += phase.sampleDelay(sampler.next1D());
-      if (s.opl >= recorder.horizon()) return false;
+      if (s.opl >= recorder.horizon() || pastGate(s)) return false;
     }
     Vec3f wi = -s.ray.d;
     SurfaceInteraction ref;  // a medium vertex: zero normal, so rays leave it without offset
@@ -595,7 +695,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     const BSDF& bsdf = *si.bsdf();
     if (bsdf.hasDelay()) {  // time spent scattering here delays everything that leaves this vertex
       s.opl += bsdf.sampleDelay(sampler.next1D());
-      if (s.opl >= recorder.horizon()) return false;
+      if (s.opl >= recorder.horizon() || pastGate(s)) return false;
     }
     bool lightDirected = bsdf.hasSmooth() && runsLightDirected(s);
     if (bsdf.hasSmooth()) {
