@@ -39,12 +39,13 @@ from provenance import commit, cpu_model, load_line  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FEMTO = os.path.join(ROOT, "build", "bin", "femto")
 FOG = os.path.join(ROOT, "scenes", "cornell-box-fog", "scene.xml")
+ARGS = argparse.Namespace(femto=FEMTO)
 
 
 def render(scene, defines, seed, out_dir, threads):
     """Render; returns (volume as float64, CPU seconds of the process)."""
     out = os.path.join(out_dir, f"r{seed}_{abs(hash(tuple(sorted(defines.items())))) % 10**8}.exr")
-    cmd = [FEMTO, "render", scene, "-o", out, "--seed", str(seed), "-t", str(threads)]
+    cmd = [ARGS.femto, "render", scene, "-o", out, "--seed", str(seed), "-t", str(threads)]
     for k, v in defines.items():
         cmd += ["-D", f"{k}={v}"]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -139,7 +140,10 @@ def main():
     parser.add_argument("--seeds", type=int, default=3, help="seed pairs for (a) and (b)")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--only", default="ab", help="which tables")
+    parser.add_argument("--femto", default=FEMTO,
+                        help="the femto executable (e.g. a copy of an older build, to measure before and after)")
     args = parser.parse_args()
+    ARGS.femto = args.femto
     load_start = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="path-sampling-") as out_dir:
         print("## transient_path sampling: equiangular, time windows\n")
