@@ -62,7 +62,17 @@
 // so the steady image and _before/_after keep what they record (their
 // expectations are unchanged); the horizon alone only ended a path once its
 // own OPL had passed it. The camera segment without observer time is not
-// truncated (its OPL does not count). Off by default:
+// truncated (its OPL does not count). A vertex from which even the longest
+// way through the scene's box to the lights arrives before the window
+// samples no light-directed vertex (its equiangular vertices could not land
+// in the window; the path's own MIS weights know: prevLightDirected).
+// skip_before_window = true (needs time_gating) also leaves out the
+// next-event connections whose light surely arrives before the window (at
+// most the scene's largest refractive index times their length): on a late
+// window those shadow rays are most of the time spent, and the window's
+// estimate is the same; the steady image and _before then lack most of the
+// light before the window, so it is off by default. Time gating itself is
+// off by default:
 // with it the samples depend on the window, so a render split into windows is
 // equal to one render within noise only, not bit for bit
 // (test_transient_time_window_split.cpp). Paths end by
@@ -98,7 +108,8 @@
 // only, for comparisons) | - | | light_directions | boolean | true   | a second next-event vertex per scattering
 // vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | -
 // | | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time
-// window, truncate free flights past it | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
+// window, truncate free flights past it | - | | skip_before_window | boolean | false | with time_gating: make no
+// next-event connection whose light arrives before the window (steady and _before then lack it) | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
 // temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | -
 // | | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins | |
 // discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray)
@@ -185,6 +196,9 @@ struct PathState : OpticalPath {
   // gate (GatedSegment).
   LightBound lights;
   GatedSegment gated;
+  // The largest refractive index of the scene's media (and 1): light
+  // connections arrive at most that times their length after they start.
+  float etaMax = 1.0f;
 };
 
 }  // namespace
@@ -202,7 +216,10 @@ class TransientPathIntegrator : public TransientIntegrator {
         observerTime_(props.getBool("observer_time", true)),
         equiangular_(props.getBool("equiangular", true)),
         lightDirections_(props.getBool("light_directions", true)),
-        timeGating_(props.getBool("time_gating", false)) {
+        timeGating_(props.getBool("time_gating", false)),
+        skipBeforeWindow_(props.getBool("skip_before_window", false)) {
+    if (skipBeforeWindow_ && !timeGating_)
+      props.raise("skip_before_window", "skip_before_window needs time_gating = true (it skips light before its window)");
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
       if (props.has("observer_time"))
@@ -225,6 +242,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (timeGating_) {
       s.gate = oplGate(scene, recorder);
       s.lights = lightBound(scene);
+      s.etaMax = largestEta(scene);
     }
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
@@ -267,7 +285,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
                ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
                ", light_directions=", lightDirections_ ? "true" : "false",
-               ", time_gating=", timeGating_ ? "true" : "false", "]");
+               ", time_gating=", timeGating_ ? "true" : "false",
+               ", skip_before_window=", skipBeforeWindow_ ? "true" : "false", "]");
   }
 
  private:
@@ -305,6 +324,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     DirectionSample ds;
     Color3f emitterWeight = scene.sampleEmitterDirection(ref, sampler.next2D(), ds, false);
     if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
+    if (arrivesBeforeWindow(s, s.opl, ds.dist)) return;
     // The OPL of the light segment is at least its length (eta >= 1): skip what the film cannot show.
     if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
     float pdf = 0.0f;
@@ -470,8 +490,51 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// Does the scattering vertex the path is at (depth s.depth, already
   /// counted) sample a light-directed vertex? Only toward a medium vertex
   /// that may still connect to a light.
-  bool runsLightDirected(const PathState& s) const {
-    return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth;
+  bool runsLightDirected(const Scene& scene, const PathState& s) const {
+    return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth && !lightDirectedBeforeWindow(scene, s);
+  }
+
+  /// Time gating: could nothing the light-directed vertices of the vertex
+  /// the path is at find arrive in the window? Their medium vertices arrive
+  /// in it by construction (equiangularToward) and so cannot when even the
+  /// longest way through the scene's box to every point light arrives before
+  /// it (longestDetour; delays aside); then the vertex runs none (a rule of
+  /// the vertex alone, as the path's own strategies' weights assume:
+  /// prevLightDirected), and a late window does not pay the rays of early
+  /// vertices. Light before the window then loses their variance reduction.
+  bool lightDirectedBeforeWindow(const Scene& scene, const PathState& s) const {
+    if (!(s.gate.start > -Infinity) || s.lights.anywhere || !scene.bbox().valid()) return false;
+    float eta = std::max(s.etaMax, s.surfaceEta);
+    for (int k = 0; k < s.lights.count; ++k)
+      if (!(s.opl + double(eta) * longestDetour(s.vertex, scene.bbox(), s.lights.points[k]) < s.gate.start))
+        return false;
+    return true;
+  }
+
+  /// skip_before_window: does a light connection of length `dist` from OPL
+  /// `opl` surely arrive before the window (at most etaMax times its length;
+  /// delays before `opl` counted)? Then it is not made: the window's
+  /// estimate does not change (nothing skipped could land in it), the
+  /// steady image and _before lose that light.
+  bool arrivesBeforeWindow(const PathState& s, double opl, float dist) const {
+    return skipBeforeWindow_ && std::isfinite(dist) &&
+           opl + double(std::max(s.etaMax, s.surfaceEta)) * dist < s.gate.start;
+  }
+
+  /// The largest refractive index of the media the scene names (shapes'
+  /// interiors and exteriors, the sensor, the emitters), at least 1.
+  static float largestEta(const Scene& scene) {
+    float eta = 1.0f;
+    auto add = [&](const Medium* medium) {
+      if (medium) eta = std::max(eta, medium->eta());
+    };
+    for (const auto& shape : scene.shapes()) {
+      add(shape->interiorMedium());
+      add(shape->exteriorMedium());
+    }
+    add(scene.sensor().medium());
+    for (const auto& emitter : scene.emitters()) add(emitter->medium());
+    return eta;
   }
 
   /// The light-directed next-event vertices (see the header): from the
@@ -598,6 +661,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     const BSDF* bsdf = hit.bsdf();
     if (!l.crossedMedium || !bsdf || !bsdf->hasSmooth()) return;
     if (bsdf->hasDelay()) opl += bsdf->sampleDelay(sampler.next1D());
+    if (arrivesBeforeWindow(s, opl, distance(hit.p, l.lightPosition))) return;
     DirectionSample ds;
     Color3f Le = l.emitter->sampleDirection(hit.p, Point2f(l.uPick, 0.5f), ds);
     if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
@@ -667,7 +731,7 @@ class TransientPathIntegrator : public TransientIntegrator {
           return Color3f(phase.eval(wi, wo));
         },
         t);
-    bool lightDirected = runsLightDirected(s);
+    bool lightDirected = runsLightDirected(scene, s);
     if (lightDirected)
       nextEventLightDirected(scene, s, ref, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
         pdf = phase.pdf(wi, wo);
@@ -697,7 +761,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       s.opl += bsdf.sampleDelay(sampler.next1D());
       if (s.opl >= recorder.horizon() || pastGate(s)) return false;
     }
-    bool lightDirected = bsdf.hasSmooth() && runsLightDirected(s);
+    bool lightDirected = bsdf.hasSmooth() && runsLightDirected(scene, s);
     if (bsdf.hasSmooth()) {
       auto scatter = [&](const Vec3f& wo, float& pdf) {
         Vec3f local = si.toLocal(wo);
@@ -740,6 +804,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   bool equiangular_;
   bool lightDirections_;
   bool timeGating_;
+  bool skipBeforeWindow_;
   bool discardDirectLight_ = false;
 };
 

@@ -68,6 +68,15 @@ double gateReach(const Ray& ray, double eta, double startOpl, const OplGate& gat
   return reach;
 }
 
+float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c) {
+  float longest = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    Point3f corner(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z);
+    longest = std::max(longest, distance(x, corner) + distance(corner, c));
+  }
+  return longest;
+}
+
 float scatterProbabilityBefore(const Medium& medium, float reach) {
   Color3f sigma = medium.majorant();
   float p = 0.0f;

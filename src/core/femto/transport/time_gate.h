@@ -11,6 +11,7 @@
 // "DARTS", SIGGRAPH Asia 2024, sample distances on this interval).
 #include <array>
 
+#include <femto/math/bbox.h>
 #include <femto/math/constants.h>
 #include <femto/math/ray.h>
 #include <femto/math/vector.h>
@@ -75,6 +76,11 @@ double gateReach(const Ray& ray, double eta, double startOpl, const OplGate& gat
 inline bool pastGate(const Point3f& p, double opl, const OplGate& gate, const LightBound& lights) {
   return gate.end < Infinity && opl + double(lights.distanceFrom(p)) >= gate.end;
 }
+
+/// The longest |x - y| + |y - c| over the points y of `box` (valid): the
+/// sum is convex in y, so it is largest at a corner. A bound of the length of
+/// any path from x through the box to c.
+float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c);
 
 /// A free flight conditioned to scatter before `reach` in a homogeneous
 /// medium (majorant() = sigma_t): the channel is picked in proportion to its

@@ -48,9 +48,12 @@ void writeDensityGrid(const std::filesystem::path& file, int res) {
 
 /// A fog cube (index-matched, medium `mediumXml` with id "fog") holding a
 /// diffuse floor and a point light, seen from outside at z = 4.
-std::shared_ptr<Scene> fogRoom(bool gating, bool observerTime, const std::string& mediumXml, const Point3f& light) {
+std::shared_ptr<Scene> fogRoom(bool gating, bool observerTime, const std::string& mediumXml, const Point3f& light,
+                               bool skipBeforeWindow = false) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path"><integer name="max_depth" value="8"/>
+    <boolean name="skip_before_window" value=")",
+                             gating && skipBeforeWindow ? "true" : "false", R"("/>
     <boolean name="observer_time" value=")",
                              observerTime ? "true" : "false", R"("/>
     <boolean name="time_gating" value=")",
@@ -75,9 +78,11 @@ Ray roomRay(PCG32& rng) {
 }
 
 /// Gated and ungated estimates of `grid`'s window agree: its total and its
-/// last bin (where truncation cuts most), within 5 combined standard errors.
+/// last bin (where truncation cuts most), within 5 combined standard errors;
+/// and so does the light before the window (the film's _before), unless
+/// `before` is false (skip_before_window).
 template <typename SceneFn, typename RayFn>
-void expectGatedAgrees(SceneFn&& scene, const TimeGrid& grid, int n, uint64_t seed, RayFn&& rays) {
+void expectGatedAgrees(SceneFn&& scene, const TimeGrid& grid, int n, uint64_t seed, RayFn&& rays, bool before = true) {
   WindowEstimate gated = estimateWindow(*scene(true), grid, n, seed, rays);
   WindowEstimate ungated = estimateWindow(*scene(false), grid, n, seed + 1000, rays);
   ASSERT_GT(ungated.total.mean(), 0.0) << "the window holds light: the test compares something";
@@ -89,6 +94,11 @@ void expectGatedAgrees(SceneFn&& scene, const TimeGrid& grid, int n, uint64_t se
   EXPECT_NEAR(g.mean(), u.mean(), 5.0 * std::hypot(g.standardError(), u.standardError()))
       << "last bin: gated " << g.mean() << " +- " << g.standardError() << ", ungated " << u.mean() << " +- "
       << u.standardError();
+  if (before)
+    EXPECT_NEAR(gated.before.mean(), ungated.before.mean(),
+                5.0 * std::hypot(gated.before.standardError(), ungated.before.standardError()))
+        << "before the window: gated " << gated.before.mean() << " +- " << gated.before.standardError() << ", ungated "
+        << ungated.before.mean() << " +- " << ungated.before.standardError();
 }
 
 }  // namespace
@@ -138,7 +148,7 @@ TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
 }
 
 /// scenes/cornell-box-fog, gated or not, with `maxDepth`.
-std::shared_ptr<Scene> fogBox(bool gating, int maxDepth) {
+std::shared_ptr<Scene> fogBox(bool gating, int maxDepth, bool skipBeforeWindow = false) {
   static bool searchPathSet = [] {
     PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
     return true;
@@ -150,7 +160,8 @@ std::shared_ptr<Scene> fogBox(bool gating, int maxDepth) {
                      {"spp", "1"},
                      {"frames", "false"},
                      {"max_depth", std::to_string(maxDepth)},
-                     {"time_gating", gating ? "true" : "false"}};
+                     {"time_gating", gating ? "true" : "false"},
+                     {"skip_before_window", gating && skipBeforeWindow ? "true" : "false"}};
   return loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml", options);
 }
 
@@ -173,4 +184,34 @@ TEST(TransientPathFreeFlightGate, FogBoxShortPathsAgreeWithUngated) {
   // still in the fog: most free flights are truncated, and the estimates
   // have light tails.
   expectGatedAgrees([](bool gating) { return fogBox(gating, 3); }, TimeGrid{4.0, 0.25, 6}, 80000, 800, fogBoxRay);
+}
+
+TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowLeavesTheWindowUnchanged) {
+  // skip_before_window: next-event connections that surely arrive before the
+  // window (at most the largest refractive index times their length) are
+  // not made. Media with eta > 1 (that bound), with and without observer
+  // time, and the fog box's long paths.
+  PCG32 scenes(123, 7);
+  for (int k = 0; k < 2; ++k) {
+    float sigmaT = 0.4f + 1.0f * scenes.nextFloat(), eta = 1.0f + 0.5f * scenes.nextFloat();
+    Point3f light(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f);
+    bool observerTime = k % 2 == 0;
+    double start = (observerTime ? 5.0 : 2.0) + 1.5 * scenes.nextFloat();
+    SCOPED_TRACE(str("scene ", k, ": sigma_t ", sigmaT, " eta ", eta, " light ", light, " observer time ", observerTime,
+                     " window from ", start));
+    std::string medium =
+        str(R"(<medium id="fog" type="homogeneous"><float name="sigma_t" value=")", sigmaT,
+            R"("/><float name="albedo" value="0.85"/><float name="eta" value=")", eta, R"("/></medium>)");
+    expectGatedAgrees([&](bool gating) { return fogRoom(gating, observerTime, medium, light, true); },
+                      TimeGrid{start, 0.25, 4}, 40000, 900 + k, roomRay, false);
+  }
+  expectGatedAgrees([](bool gating) { return fogBox(gating, 8, true); }, TimeGrid{7.0, 0.25, 4}, 40000, 950, fogBoxRay,
+                    false);
+}
+
+TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowNeedsTimeGating) {
+  EXPECT_THROW(loadSceneStrict(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><boolean name="skip_before_window" value="true"/></integrator>
+</scene>)"),
+               std::exception);
 }
