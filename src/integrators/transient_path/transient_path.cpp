@@ -504,10 +504,17 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// vertices. Light before the window then loses their variance reduction.
   bool lightDirectedBeforeWindow(const Scene& scene, const PathState& s) const {
     if (!(s.gate.start > -Infinity) || s.lights.anywhere || !scene.bbox().valid()) return false;
-    float eta = std::max(s.etaMax, s.surfaceEta);
-    for (int k = 0; k < s.lights.count; ++k)
-      if (!(s.opl + double(eta) * longestDetour(s.vertex, scene.bbox(), s.lights.points[k]) < s.gate.start))
-        return false;
+    double eta = std::max(s.etaMax, s.surfaceEta);
+    const BoundingBox3f& box = scene.bbox();
+    // Every point of the box is within this of the vertex.
+    double farthest = distance(s.vertex, (box.min + box.max) * 0.5f) + 0.5 * length(box.max - box.min);
+    for (int k = 0; k < s.lights.count; ++k) {
+      // Cheap bounds first: the detour is at least |x - c| and at most that plus twice `farthest`.
+      double direct = distance(s.vertex, s.lights.points[k]);
+      if (!(s.opl + eta * direct < s.gate.start)) return false;
+      if (s.opl + eta * (direct + 2.0 * farthest) < s.gate.start) continue;
+      if (!(s.opl + eta * longestDetour(s.vertex, box, s.lights.points[k]) < s.gate.start)) return false;
+    }
     return true;
   }
 
