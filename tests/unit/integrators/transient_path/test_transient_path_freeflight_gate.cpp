@@ -215,3 +215,10 @@ TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowNeedsTimeGating) {
 </scene>)"),
                std::exception);
 }
+
+TEST(TransientPathFreeFlightGate, FogBoxLightBeforeALateWindowKeepsItsMean) {
+  // A window late enough that the first vertices run no light-directed
+  // vertex (the path's own MIS weights must know): the light before it
+  // (_before) keeps its mean.
+  expectGatedAgrees([](bool gating) { return fogBox(gating, 3); }, TimeGrid{10.0, 0.25, 4}, 60000, 1000, fogBoxRay);
+}
