@@ -15,10 +15,12 @@
 namespace femto::test {
 
 /// Per-sample totals of what `scene` records inside `grid`'s window along
-/// rays from `rays` (one Mean per bin, and the window's total).
+/// rays from `rays` (one Mean per bin, and the window's total), and of what
+/// it records before the window (the film's _before).
 struct WindowEstimate {
   std::vector<Mean> bins;
   Mean total;
+  Mean before;
 };
 
 template <typename RayFn>
@@ -32,8 +34,9 @@ WindowEstimate estimateWindow(const Scene& scene, const TimeGrid& grid, int n, u
     CollectingRecorder recorder(grid);
     transientIntegrator(scene).sample(scene, rays(rng), *sampler, recorder);
     std::fill(path.begin(), path.end(), 0.0);
-    double sum = 0.0;
+    double sum = 0.0, before = 0.0;
     for (const auto& [opl, value] : recorder.hits) {
+      if (opl < grid.start) before += value.g;
       int bin = grid.binOf(opl);
       if (bin < 0) continue;
       path[bin] += value.g;
@@ -41,6 +44,7 @@ WindowEstimate estimateWindow(const Scene& scene, const TimeGrid& grid, int n, u
     }
     for (int b = 0; b < grid.bins; ++b) e.bins[b].add(path[b]);
     e.total.add(sum);
+    e.before.add(before);
   }
   return e;
 }

@@ -47,7 +47,32 @@
 // same density, so the estimate stays unbiased for any window; segments that
 // cannot reach the window spend no equiangular vertex at all. A short window
 // late in time then gets one next-event estimate per segment that lands in it,
-// where free flights put only a small share of theirs there. Off by default:
+// where free flights put only a small share of theirs there. Free flights are
+// truncated by the residual time (transport/time_gate.h, gateReach): past
+// the distance from which even a straight connection to the nearest light
+// arrives at or after the gate's end, nothing the path does can land before
+// it (triangle inequality, refractive indices >= 1, delays only add), so in
+// a homogeneous medium the free flight is conditioned on scattering before
+// that distance and weighted by the probability that it does (the surface
+// beyond is never reached), and in a heterogeneous one tracked only up to it
+// (a path that passes it ends); paths also end at a vertex whose OPL plus
+// the distance to the nearest light reaches the gate's end. Lights not at a
+// point (area, environment, directional) give no distance: then only the
+// residual OPL bounds the reach. The gate's end is the recorder's horizon,
+// so the steady image and _before/_after keep what they record (their
+// expectations are unchanged); the horizon alone only ended a path once its
+// own OPL had passed it. The camera segment without observer time is not
+// truncated (its OPL does not count). A vertex from which even the longest
+// way through the scene's box to the lights arrives before the window
+// samples no light-directed vertex (its equiangular vertices could not land
+// in the window; the path's own MIS weights know: prevLightDirected).
+// skip_before_window = true (needs time_gating) also leaves out the
+// next-event connections whose light surely arrives before the window (at
+// most the scene's largest refractive index times their length): on a late
+// window those shadow rays are most of the time spent, and the window's
+// estimate is the same; the steady image and _before then lack most of the
+// light before the window, so it is off by default. Time gating itself is
+// off by default:
 // with it the samples depend on the window, so a render split into windows is
 // equal to one render within noise only, not bit for bit
 // (test_transient_time_window_split.cpp). Paths end by
@@ -83,7 +108,8 @@
 // only, for comparisons) | - | | light_directions | boolean | true   | a second next-event vertex per scattering
 // vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | -
 // | | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time
-// window | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
+// window, truncate free flights past it | - | | skip_before_window | boolean | false | with time_gating: make no
+// next-event connection whose light arrives before the window (steady and _before then lack it) | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
 // temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | -
 // | | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins | |
 // discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray)
@@ -119,6 +145,22 @@
 namespace femto {
 namespace {
 
+/// Residual-time truncation of one medium segment (time gating): past
+/// `reach` a vertex cannot contribute before the gate ends
+/// (transport/time_gate.h, gateReach); `probability` is free flights' chance
+/// to scatter before it (homogeneous media). Inactive when reach >= the
+/// segment's length.
+struct GatedSegment {
+  float reach = Infinity;
+  float probability = 1.0f;
+  bool truncates(float tMax) const { return reach < tMax; }
+  /// Density of the (truncated) free flight at t, given the untruncated one.
+  float pdf(float tMax, float t, float freeFlightPdf) const {
+    if (!truncates(tMax)) return freeFlightPdf;
+    return t < reach && probability > 0.0f ? freeFlightPdf / probability : 0.0f;
+  }
+};
+
 /// The mutable state of one camera path: where it is and its OPL there
 /// (OpticalPath: ray, vertex, opl, medium, surfaceEta), and what it carries.
 struct PathState : OpticalPath {
@@ -149,6 +191,14 @@ struct PathState : OpticalPath {
   // the segment starts when it counts toward the OPL (else -Infinity: no gate).
   OplGate gate;
   double segmentStartOpl = -Infinity;
+  // Residual-time truncation (time gating): where the lights are, and the
+  // distance along the current medium segment past which nothing reaches the
+  // gate (GatedSegment).
+  LightBound lights;
+  GatedSegment gated;
+  // The largest refractive index of the scene's media (and 1): light
+  // connections arrive at most that times their length after they start.
+  float etaMax = 1.0f;
 };
 
 }  // namespace
@@ -166,7 +216,10 @@ class TransientPathIntegrator : public TransientIntegrator {
         observerTime_(props.getBool("observer_time", true)),
         equiangular_(props.getBool("equiangular", true)),
         lightDirections_(props.getBool("light_directions", true)),
-        timeGating_(props.getBool("time_gating", false)) {
+        timeGating_(props.getBool("time_gating", false)),
+        skipBeforeWindow_(props.getBool("skip_before_window", false)) {
+    if (skipBeforeWindow_ && !timeGating_)
+      props.raise("skip_before_window", "skip_before_window needs time_gating = true (it skips light before its window)");
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
       if (props.has("observer_time"))
@@ -186,7 +239,11 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
     s.vertex = s.prev.p = cameraRay.o;
-    if (timeGating_) s.gate = oplGate(scene, recorder);
+    if (timeGating_) {
+      s.gate = oplGate(scene, recorder);
+      s.lights = lightBound(scene);
+      s.etaMax = largestEta(scene);
+    }
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
       bool hit = scene.rayIntersect(s.ray, si);
@@ -194,13 +251,13 @@ class TransientPathIntegrator : public TransientIntegrator {
       if (s.medium) {
         beginMediumSegment(s, hit ? si.t : Infinity);
         if (s.equiangular) nextEventEquiangular(scene, s, sampler, recorder);
-        ms = s.medium->sampleDistance(s.ray, hit ? si.t : Infinity, sampler);
+        ms = sampleFreeFlight(s, hit ? si.t : Infinity, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
         if (!ms.scattered) passSegment(s, hit ? si.t : Infinity, sampler);
       }
       if (ms.scattered) {
-        if (!advance(s, ms.p) || s.opl >= horizon) return;
+        if (!advance(s, ms.p) || s.opl >= horizon || pastGate(s)) return;
         if (!scatterInMedium(scene, s, ms.p, ms.t, sampler, recorder)) return;
         passThrough = 0;
         continue;
@@ -212,6 +269,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       }
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
+      if (pastGate(s)) return;
       s.equiangular = false;
       if (isPassThrough(si)) {
         s.crossBoundary(si);
@@ -227,7 +285,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
                ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
                ", light_directions=", lightDirections_ ? "true" : "false",
-               ", time_gating=", timeGating_ ? "true" : "false", "]");
+               ", time_gating=", timeGating_ ? "true" : "false",
+               ", skip_before_window=", skipBeforeWindow_ ? "true" : "false", "]");
   }
 
  private:
@@ -265,6 +324,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     DirectionSample ds;
     Color3f emitterWeight = scene.sampleEmitterDirection(ref, sampler.next2D(), ds, false);
     if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
+    if (arrivesBeforeWindow(s, s.opl, ds.dist)) return;
     // The OPL of the light segment is at least its length (eta >= 1): skip what the film cannot show.
     if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
     float pdf = 0.0f;
@@ -281,7 +341,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       weight = powerHeuristic(1.0f, lightDirectedRatio(s, lightPosition), 0.0f);
     } else if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
       float equiangular = pdfEquiangular(equiangularToward(s, lightPosition), segmentT);
-      weight = powerHeuristic(s.medium->freeFlightPdf(segmentT), equiangular,
+      weight = powerHeuristic(freeFlightPdf(s, segmentT), equiangular,
                               equiangular * lightDirectedRatio(s, lightPosition));
     }
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
@@ -295,6 +355,64 @@ class TransientPathIntegrator : public TransientIntegrator {
     s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
     s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
+    s.gated = gatedSegment(s.gate, s.lights, s.ray, s.vertex, tMax, *s.medium, s.segmentStartOpl);
+  }
+
+  /// Residual-time truncation of the medium segment [0, tMax] of `ray`
+  /// (whose origin may be offset from the exact `vertex`, at OPL `startOpl`):
+  /// see GatedSegment. The offset is added to the OPL still available, so
+  /// the reach stays a bound for the exact vertex.
+  static GatedSegment gatedSegment(const OplGate& gate, const LightBound& lights, const Ray& ray,
+                                   const Point3f& vertex, float tMax, const Medium& medium, double startOpl) {
+    GatedSegment g;
+    if (!gate.gates()) return g;
+    double eta = medium.eta();
+    double reach = gateReach(ray, eta, startOpl - eta * double(distance(vertex, ray.o)), gate, lights);
+    if (!(reach < double(tMax))) return g;
+    g.reach = float(reach);
+    if (medium.isHomogeneous()) g.probability = scatterProbabilityBefore(medium, g.reach);
+    return g;
+  }
+
+  /// The free flight along the current medium segment [0, tMax]. With a
+  /// residual-time truncation short of tMax (GatedSegment), in homogeneous
+  /// media conditioned to scatter before the reach, weighted by the
+  /// probability of doing so; in heterogeneous media tracked up to the
+  /// reach only, and a path that passes it ends (zero weight): beyond it
+  /// nothing arrives before the gate ends.
+  MediumSample sampleFreeFlight(const PathState& s, float tMax, Sampler& sampler) const {
+    if (!s.gated.truncates(tMax)) return s.medium->sampleDistance(s.ray, tMax, sampler);
+    if (s.medium->isHomogeneous()) return sampleFreeFlightBefore(*s.medium, s.ray, s.gated.reach, sampler);
+    MediumSample ms = s.medium->sampleDistance(s.ray, s.gated.reach, sampler);
+    if (!ms.scattered) ms.weight = Color3f(0.0f);
+    return ms;
+  }
+
+  /// Density of the free-flight vertex at distance t on the current
+  /// (homogeneous) segment, truncated or not (MIS against equiangular vertices).
+  static float freeFlightPdf(const PathState& s, float t) {
+    return s.gated.pdf(s.segmentMax, t, s.medium->freeFlightPdf(t));
+  }
+
+  /// Whether the path's vertex can no longer contribute before the gate ends
+  /// (time gating: OPL + distance to the nearest light, time_gate.h).
+  static bool pastGate(const PathState& s) {
+    return s.gate.gates() && femto::pastGate(s.vertex, s.opl, s.gate, s.lights);
+  }
+
+  /// The scene's lights for residual-time truncation (LightBound).
+  static LightBound lightBound(const Scene& scene) {
+    LightBound bound;
+    bound.anywhere = false;
+    for (const auto& emitter : scene.emitters()) {
+      Point3f p;
+      if (!emitter->deltaPosition(p) || bound.count == LightBound::MaxPoints) {
+        bound.anywhere = true;
+        break;
+      }
+      bound.points[bound.count++] = p;
+    }
+    return bound;
   }
 
   /// The OPLs (for a Dirac emission at 0) from which a contribution can reach
@@ -372,8 +490,58 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// Does the scattering vertex the path is at (depth s.depth, already
   /// counted) sample a light-directed vertex? Only toward a medium vertex
   /// that may still connect to a light.
-  bool runsLightDirected(const PathState& s) const {
-    return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth;
+  bool runsLightDirected(const Scene& scene, const PathState& s) const {
+    return lightDirections_ && equiangular_ && s.depth + 1 != depth_.maxDepth && !lightDirectedBeforeWindow(scene, s);
+  }
+
+  /// Time gating: could nothing the light-directed vertices of the vertex
+  /// the path is at find arrive in the window? Their medium vertices arrive
+  /// in it by construction (equiangularToward) and so cannot when even the
+  /// longest way through the scene's box to every point light arrives before
+  /// it (longestDetour; delays aside); then the vertex runs none (a rule of
+  /// the vertex alone, as the path's own strategies' weights assume:
+  /// prevLightDirected), and a late window does not pay the rays of early
+  /// vertices. Light before the window then loses their variance reduction.
+  bool lightDirectedBeforeWindow(const Scene& scene, const PathState& s) const {
+    if (!(s.gate.start > -Infinity) || s.lights.anywhere || !scene.bbox().valid()) return false;
+    double eta = std::max(s.etaMax, s.surfaceEta);
+    const BoundingBox3f& box = scene.bbox();
+    // Every point of the box is within this of the vertex.
+    double farthest = distance(s.vertex, (box.min + box.max) * 0.5f) + 0.5 * length(box.max - box.min);
+    for (int k = 0; k < s.lights.count; ++k) {
+      // Cheap bounds first: the detour is at least |x - c| and at most that plus twice `farthest`.
+      double direct = distance(s.vertex, s.lights.points[k]);
+      if (!(s.opl + eta * direct < s.gate.start)) return false;
+      if (s.opl + eta * (direct + 2.0 * farthest) < s.gate.start) continue;
+      if (!(s.opl + eta * longestDetour(s.vertex, box, s.lights.points[k]) < s.gate.start)) return false;
+    }
+    return true;
+  }
+
+  /// skip_before_window: does a light connection of length `dist` from OPL
+  /// `opl` surely arrive before the window (at most etaMax times its length;
+  /// delays before `opl` counted)? Then it is not made: the window's
+  /// estimate does not change (nothing skipped could land in it), the
+  /// steady image and _before lose that light.
+  bool arrivesBeforeWindow(const PathState& s, double opl, float dist) const {
+    return skipBeforeWindow_ && std::isfinite(dist) &&
+           opl + double(std::max(s.etaMax, s.surfaceEta)) * dist < s.gate.start;
+  }
+
+  /// The largest refractive index of the media the scene names (shapes'
+  /// interiors and exteriors, the sensor, the emitters), at least 1.
+  static float largestEta(const Scene& scene) {
+    float eta = 1.0f;
+    auto add = [&](const Medium* medium) {
+      if (medium) eta = std::max(eta, medium->eta());
+    };
+    for (const auto& shape : scene.shapes()) {
+      add(shape->interiorMedium());
+      add(shape->exteriorMedium());
+    }
+    add(scene.sensor().medium());
+    for (const auto& emitter : scene.emitters()) add(emitter->medium());
+    return eta;
   }
 
   /// The light-directed next-event vertices (see the header): from the
@@ -409,11 +577,13 @@ class TransientPathIntegrator : public TransientIntegrator {
       bool hitSurface = scene.rayIntersect(ray, hit);
       float tMax = hitSurface ? hit.t : Infinity;
       if (medium) {
-        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, crossing == 0 ? uDistance : sampler.next1D(), sampler,
-                            recorder);
+        GatedSegment gated = gatedSegment(s.gate, s.lights, ray, start, tMax, *medium, opl);
+        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, gated,
+                            crossing == 0 ? uDistance : sampler.next1D(), sampler, recorder);
         Color3f tr = medium->transmittance(ray, tMax, sampler);
         l.weight *= tr;
-        l.passProbability *= tr.average();
+        // The path's own free flights end within a truncated segment (sampleFreeFlight).
+        l.passProbability *= gated.truncates(tMax) ? 0.0f : tr.average();
         l.crossedMedium = true;
       }
       if (!hitSurface || l.weight.isBlack()) return;
@@ -448,8 +618,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// direction's own sampling would give on the same segment (densities
   /// vertexPdf * passProbability times p_ff(t) or p_eq(t)).
   void lightDirectedVertex(const Scene& scene, const PathState& s, const LightDirected& l, const Ray& ray, float tMax,
-                           const Medium& medium, double startOpl, float uDistance, Sampler& sampler,
-                           RadianceRecorder& recorder) const {
+                           const Medium& medium, double startOpl, const GatedSegment& gated, float uDistance,
+                           Sampler& sampler, RadianceRecorder& recorder) const {
     EquiangularSegment seg = equiangularToward(ray, tMax, medium, s.gate, startOpl, l.lightPosition);
     if (!seg.valid()) return;
     float pdf = 0.0f;
@@ -473,7 +643,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (c.transmittance.isBlack()) return;
     // Densities of the three strategies for this vertex, divided by the common p_eq(t) / t^2.
     float own = l.vertexPdf * l.passProbability;
-    float weight = powerHeuristic(l.lightPdf, own, own * medium.freeFlightPdf(t) / pdf);
+    float weight = powerHeuristic(l.lightPdf, own, own * gated.pdf(tMax, t, medium.freeFlightPdf(t)) / pdf);
     recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
                        l.emitter->pulse());
   }
@@ -498,6 +668,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     const BSDF* bsdf = hit.bsdf();
     if (!l.crossedMedium || !bsdf || !bsdf->hasSmooth()) return;
     if (bsdf->hasDelay()) opl += bsdf->sampleDelay(sampler.next1D());
+    if (arrivesBeforeWindow(s, opl, distance(hit.p, l.lightPosition))) return;
     DirectionSample ds;
     Color3f Le = l.emitter->sampleDirection(hit.p, Point2f(l.uPick, 0.5f), ds);
     if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
@@ -543,7 +714,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = powerHeuristic(pdf, s.medium->freeFlightPdf(t), pdf * lightDirectedRatio(s, lightPosition));
+    float weight = powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition));
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
   }
@@ -554,7 +725,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     const PhaseFunction& phase = s.medium->phase();
     if (phase.hasDelay()) {
       s.opl += phase.sampleDelay(sampler.next1D());
-      if (s.opl >= recorder.horizon()) return false;
+      if (s.opl >= recorder.horizon() || pastGate(s)) return false;
     }
     Vec3f wi = -s.ray.d;
     SurfaceInteraction ref;  // a medium vertex: zero normal, so rays leave it without offset
@@ -567,7 +738,7 @@ class TransientPathIntegrator : public TransientIntegrator {
           return Color3f(phase.eval(wi, wo));
         },
         t);
-    bool lightDirected = runsLightDirected(s);
+    bool lightDirected = runsLightDirected(scene, s);
     if (lightDirected)
       nextEventLightDirected(scene, s, ref, sampler, recorder, [&](const Vec3f& wo, float& pdf) {
         pdf = phase.pdf(wi, wo);
@@ -595,9 +766,9 @@ class TransientPathIntegrator : public TransientIntegrator {
     const BSDF& bsdf = *si.bsdf();
     if (bsdf.hasDelay()) {  // time spent scattering here delays everything that leaves this vertex
       s.opl += bsdf.sampleDelay(sampler.next1D());
-      if (s.opl >= recorder.horizon()) return false;
+      if (s.opl >= recorder.horizon() || pastGate(s)) return false;
     }
-    bool lightDirected = bsdf.hasSmooth() && runsLightDirected(s);
+    bool lightDirected = bsdf.hasSmooth() && runsLightDirected(scene, s);
     if (bsdf.hasSmooth()) {
       auto scatter = [&](const Vec3f& wo, float& pdf) {
         Vec3f local = si.toLocal(wo);
@@ -640,6 +811,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   bool equiangular_;
   bool lightDirections_;
   bool timeGating_;
+  bool skipBeforeWindow_;
   bool discardDirectLight_ = false;
 };
 

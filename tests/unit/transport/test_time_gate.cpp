@@ -1,7 +1,9 @@
 // Time-gated distance ranges (transport/time_gate.h) against bisection on
 // the path length g(t) = t + |o + t d - c|, and equiangular sampling of a
 // part [tStart, tEnd] of a segment: its density integrates to one there and
-// its samples stay in it.
+// its samples stay in it. Residual-time truncation: the reach against
+// bisection on eta t + |o + t d - c| (eta >= 1), and free flights
+// conditioned to scatter before it against the closed form of what they estimate.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,21 +13,24 @@
 #include <femto/transport/equiangular.h>
 #include <femto/transport/time_gate.h>
 
+#include "media_test_util.h"
+
 using namespace femto;
+using namespace femto::test;
 
 namespace {
 
-double pathLength(const Point3f& o, const Vec3f& d, const Point3f& c, double t) {
-  return t + double(distance(o + d * float(t), c));
+double pathLength(const Point3f& o, const Vec3f& d, const Point3f& c, double t, double eta = 1.0) {
+  return eta * t + double(distance(o + d * float(t), c));
 }
 
 /// The t with pathLength = length, by bisection (g is non-decreasing).
-double bisect(const Point3f& o, const Vec3f& d, const Point3f& c, double length) {
+double bisect(const Point3f& o, const Vec3f& d, const Point3f& c, double length, double eta = 1.0) {
   double lo = 0.0, hi = 1.0;
-  while (pathLength(o, d, c, hi) < length) hi *= 2.0;
+  while (pathLength(o, d, c, hi, eta) < length) hi *= 2.0;
   for (int i = 0; i < 200; ++i) {
     double mid = 0.5 * (lo + hi);
-    (pathLength(o, d, c, mid) < length ? lo : hi) = mid;
+    (pathLength(o, d, c, mid, eta) < length ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -80,4 +85,91 @@ TEST(TimeGate, EquiangularOverAPartOfTheSegmentIsNormalisedAndStaysInIt) {
       ASSERT_NEAR(pdf, pdfEquiangular(seg, t), 1e-5f * pdf);
     }
   }
+}
+
+TEST(TimeGate, ReachMatchesBisectionForAnyRefractiveIndex) {
+  PCG32 rng(11, 1);
+  for (int i = 0; i < 300; ++i) {
+    Point3f o(rng.nextFloat() * 2 - 1, rng.nextFloat() * 2 - 1, rng.nextFloat() * 2 - 1);
+    Point3f c(rng.nextFloat() * 2 - 1, rng.nextFloat() * 2 - 1, rng.nextFloat() * 2 - 1);
+    Vec3f d = warp::squareToUniformSphere({rng.nextFloat(), rng.nextFloat()});
+    double eta = i % 3 == 0 ? 1.0 : 1.0 + rng.nextFloat(), r = distance(o, c);
+    double length = r * (0.5 + 3.0 * rng.nextFloat());
+    double expected = length <= r ? 0.0 : bisect(o, d, c, length, eta);
+    EXPECT_NEAR(distanceReaching(o, d, c, eta, length), expected, 1e-4 * (1.0 + expected))
+        << "case " << i << " eta " << eta << " length " << length << " r " << r;
+    if (eta == 1.0)
+      EXPECT_NEAR(distanceReaching(o, d, c, eta, length), distancesArrivingWithin(o, d, c, 0.0, length).t1,
+                  1e-9 * (1.0 + expected));
+  }
+  EXPECT_EQ(distanceReaching(Point3f(0.0f), Vec3f(0, 0, 1), Point3f(1, 0, 0), 1.2, Infinity), double(Infinity));
+}
+
+TEST(TimeGate, ReachOverLightsIsTheFarthestAndPastGateTheNearest) {
+  OplGate gate;
+  gate.start = 1.0;
+  gate.end = 6.0;
+  LightBound lights;
+  lights.anywhere = false;
+  lights.points[lights.count++] = Point3f(0.0f, 1.0f, 0.0f);
+  lights.points[lights.count++] = Point3f(0.0f, 0.0f, 3.0f);
+  Ray ray(Point3f(0.0f), Vec3f(0, 0, 1));
+  // From OPL 2 at eta 1.5, 4 left: the light ahead at 3 is within reach up
+  // to 1.5 t + |3 - t| = 4 (t = 2), the one aside up to 1.5 t + sqrt(1 + t^2) = 4 (t ~ 1.48).
+  double reach = gateReach(ray, 1.5, 2.0, gate, lights);
+  EXPECT_NEAR(
+      reach,
+      std::max(bisect(ray.o, ray.d, lights.points[0], 4.0, 1.5), bisect(ray.o, ray.d, lights.points[1], 4.0, 1.5)),
+      1e-6);
+  EXPECT_NEAR(reach, 2.0, 1e-6);
+  EXPECT_EQ(gateReach(ray, 1.5, -Infinity, gate, lights), double(Infinity)) << "OPL not counted: no truncation";
+  EXPECT_EQ(gateReach(ray, 0.8, 2.0, gate, lights), double(Infinity)) << "eta < 1: no bound";
+  EXPECT_EQ(gateReach(ray, 1.0, 7.0, gate, lights), 0.0);
+  EXPECT_FALSE(pastGate(Point3f(0.0f, 0.0f, 2.5f), 5.4, gate, lights));  // 0.5 from the light ahead
+  EXPECT_TRUE(pastGate(Point3f(0.0f, 0.0f, 2.5f), 5.5, gate, lights));
+  lights.anywhere = true;  // e.g. an area light as well: only the residual OPL bounds
+  EXPECT_NEAR(gateReach(ray, 1.5, 2.0, gate, lights), 4.0 / 1.5, 1e-12);
+  EXPECT_FALSE(pastGate(Point3f(5.0f), 5.9, gate, lights));
+  EXPECT_TRUE(pastGate(Point3f(5.0f), 6.0, gate, lights));
+}
+
+TEST(TimeGate, FreeFlightBeforeTheReachEstimatesTheTruncatedIntegral) {
+  // A chromatic homogeneous medium: E[weight f(t)] of free flights
+  // conditioned on t < reach must be the integral over [0, reach) of
+  // sigma_s T(t) f(t) per channel, for f = 1 and f = t; the samples stay
+  // inside, and the density is the medium's over P(t < reach).
+  auto scene = sceneWithMedium(R"(<medium id="m" type="homogeneous">
+      <rgb name="sigma_t" value="0.3, 1.2, 2.5"/><rgb name="albedo" value="0.9, 0.6, 0.8"/></medium>)");
+  const Medium& medium = *scene->sensor().medium();
+  const Color3f sigmaT(0.3f, 1.2f, 2.5f), sigmaS = sigmaT * Color3f(0.9f, 0.6f, 0.8f);
+  auto sampler = seededSampler(5);
+  Ray ray(Point3f(0.0f), Vec3f(0, 0, 1));
+  for (float reach : {0.15f, 0.9f, 3.0f}) {
+    const int n = 200000;
+    Mean zeroth[3], first[3];
+    float p = scatterProbabilityBefore(medium, reach);
+    for (int i = 0; i < n; ++i) {
+      MediumSample ms = sampleFreeFlightBefore(medium, ray, reach, *sampler);
+      ASSERT_TRUE(ms.scattered);
+      ASSERT_GE(ms.t, 0.0f);
+      ASSERT_LT(ms.t, reach);
+      for (int c = 0; c < 3; ++c) {
+        zeroth[c].add(ms.weight[c]);
+        first[c].add(ms.weight[c] * ms.t);
+      }
+    }
+    double expectedP = 0.0;
+    for (int c = 0; c < 3; ++c) expectedP += (1.0 - std::exp(-double(sigmaT[c]) * reach)) / 3.0;
+    EXPECT_NEAR(p, expectedP, 1e-6);
+    for (int c = 0; c < 3; ++c) {
+      double s = sigmaT[c], a = sigmaS[c] / s;
+      double e0 = a * (1.0 - std::exp(-s * reach));
+      double e1 = a * ((1.0 - std::exp(-s * reach)) / s - reach * std::exp(-s * reach));
+      EXPECT_NEAR(zeroth[c].mean(), e0, 4.0 * zeroth[c].standardError() + 1e-6)
+          << "reach " << reach << " channel " << c;
+      EXPECT_NEAR(first[c].mean(), e1, 4.0 * first[c].standardError() + 1e-6) << "reach " << reach << " channel " << c;
+    }
+  }
+  MediumSample none = sampleFreeFlightBefore(medium, ray, 0.0f, *sampler);
+  EXPECT_TRUE(none.weight.isBlack()) << "nothing scatters before 0";
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <femto/math/constants.h>
+#include <femto/render/sampler.h>
 
 namespace femto {
 namespace {
@@ -30,6 +31,88 @@ DistanceRange distancesArrivingWithin(const Point3f& o, const Vec3f& d, const Po
   range.t0 = distanceOnEllipsoid(lengthA, r2, delta);
   range.t1 = distanceOnEllipsoid(lengthB, r2, delta);
   return range;
+}
+
+double distanceReaching(const Point3f& o, const Vec3f& d, const Point3f& c, double eta, double length) {
+  Vec3f oc = c - o;
+  double r2 = double(dot(oc, oc)), delta = double(dot(oc, d));
+  if (!(length > 0.0) || !(length * length > r2)) return 0.0;
+  if (length == Infinity) return Infinity;
+  // Squaring |x(t) - c| = length - eta t: A t^2 - 2 B t + C = 0 with
+  // A = eta^2 - 1, B = eta length - delta (> 0: length > |oc| >= delta),
+  // C = length^2 - |oc|^2 (> 0). The smaller root is the one with
+  // length - eta t >= 0 (the other solves eta t - |x(t) - c| = length), in
+  // the form that stays exact for A = 0 (distanceOnEllipsoid's formula).
+  double a = eta * eta - 1.0, b = eta * length - delta, cc = length * length - r2;
+  double denominator = b + std::sqrt(std::max(0.0, b * b - a * cc));
+  return denominator > 0.0 ? cc / denominator : Infinity;
+}
+
+float LightBound::distanceFrom(const Point3f& p) const {
+  if (anywhere) return 0.0f;
+  float nearest = Infinity;
+  for (int k = 0; k < count; ++k) nearest = std::min(nearest, distance(p, points[k]));
+  return nearest;
+}
+
+double gateReach(const Ray& ray, double eta, double startOpl, const OplGate& gate, const LightBound& lights) {
+  if (!(gate.end < Infinity) || !std::isfinite(startOpl) || !(eta >= 1.0)) return Infinity;
+  double length = gate.end - startOpl;
+  if (!(length > 0.0)) return 0.0;
+  if (lights.anywhere) return length / eta;
+  // A vertex may still contribute when some light is close enough: the
+  // farthest such distance over the lights.
+  double reach = 0.0;
+  for (int k = 0; k < lights.count; ++k)
+    reach = std::max(reach, distanceReaching(ray.o, ray.d, lights.points[k], eta, length));
+  return reach;
+}
+
+float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c) {
+  float longest = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    Point3f corner(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z);
+    longest = std::max(longest, distance(x, corner) + distance(corner, c));
+  }
+  return longest;
+}
+
+float scatterProbabilityBefore(const Medium& medium, float reach) {
+  Color3f sigma = medium.majorant();
+  float p = 0.0f;
+  for (int c = 0; c < 3; ++c) p += sigma[c] > 0.0f ? -std::expm1(-sigma[c] * reach) : 0.0f;
+  return p / 3.0f;
+}
+
+MediumSample sampleFreeFlightBefore(const Medium& medium, const Ray& ray, float reach, Sampler& sampler) {
+  MediumSample ms;
+  ms.t = reach;
+  float uChannel = sampler.next1D(), uDistance = sampler.next1D();
+  Color3f sigma = medium.majorant();
+  float channelP[3], total = 0.0f;
+  for (int c = 0; c < 3; ++c) total += channelP[c] = sigma[c] > 0.0f ? -std::expm1(-sigma[c] * reach) : 0.0f;
+  if (!(total > 0.0f)) {  // nothing scatters before `reach`: the path cannot contribute
+    ms.weight = Color3f(0.0f);
+    return ms;
+  }
+  // The channel in proportion to channelP (the last one with some, should rounding run past the end).
+  float target = uChannel * total;
+  int channel = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (!(channelP[c] > 0.0f)) continue;
+    channel = c;
+    if (target < channelP[c]) break;
+    target -= channelP[c];
+  }
+  float t = -std::log1p(-uDistance * channelP[channel]) / sigma[channel];
+  t = std::min(t, std::nextafter(reach, 0.0f));
+  float pdf = medium.freeFlightPdf(t);
+  ms.scattered = true;
+  ms.t = t;
+  ms.p = ray(t);
+  Color3f tr = medium.transmittance(ray, t, sampler);  // exact: homogeneous, no random numbers
+  ms.weight = pdf > 0.0f ? medium.scatteringCoefficient(ms.p) * tr * (total / 3.0f) / pdf : Color3f(0.0f);
+  return ms;
 }
 
 }  // namespace femto

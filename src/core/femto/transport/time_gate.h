@@ -9,8 +9,13 @@
 // interval [t(lengthA), t(lengthB)), in closed form (Jarabo et al., "A
 // Framework for Transient Rendering", SIGGRAPH Asia 2014, sec. 6; He et al.,
 // "DARTS", SIGGRAPH Asia 2024, sample distances on this interval).
+#include <array>
+
+#include <femto/math/bbox.h>
 #include <femto/math/constants.h>
+#include <femto/math/ray.h>
 #include <femto/math/vector.h>
+#include <femto/render/medium.h>
 
 namespace femto {
 
@@ -33,5 +38,61 @@ struct OplGate {
   double start = -Infinity, end = Infinity;
   bool gates() const { return start > -Infinity || end < Infinity; }
 };
+
+/// Distance t >= 0 along o + t d (unit d) where eta * t + |o + t d - c|
+/// reaches `length` (eta >= 1): the segment's OPL at refractive index eta plus
+/// a straight leg to c at index >= 1. The sum grows with t (its derivative is
+/// eta + cos >= 0), so every t beyond this one gives at least `length`. 0 when
+/// |o - c| >= length already; Infinity for an infinite length (or eta = 1
+/// with c ahead on the ray, where the sum stays |o - c|).
+double distanceReaching(const Point3f& o, const Vec3f& d, const Point3f& c, double eta, double length);
+
+/// Where the light a path may still reach can be, for residual-time
+/// truncation (time gating of free flights): the points of point lights, or
+/// anywhere when some emitter is not at a point (area, environment,
+/// directional: their light may be recorded at the vertex's own OPL) or there
+/// are more than the few points kept.
+struct LightBound {
+  static constexpr int MaxPoints = 4;
+  std::array<Point3f, MaxPoints> points;
+  int count = 0;
+  bool anywhere = true;
+  /// A lower bound of the distance from `p` to any light.
+  float distanceFrom(const Point3f& p) const;
+};
+
+/// Residual-time truncation: the distance along `ray` (from OPL `startOpl`,
+/// in a medium of refractive index `eta`, or none: eta = the surface's)
+/// beyond which a vertex cannot contribute before gate.end: from there even
+/// the straight connection to the nearest light arrives at or after the end
+/// (every later contribution is at least that long: triangle inequality,
+/// refractive indices >= 1, scattering delays only add). Infinity when the
+/// gate has no end, the OPL is not counted (startOpl = -Infinity: the camera
+/// segment without observer time) or eta < 1.
+double gateReach(const Ray& ray, double eta, double startOpl, const OplGate& gate, const LightBound& lights);
+
+/// Whether a vertex at `p` with OPL `opl` can no longer contribute before
+/// gate.end (the same bound at a single point).
+inline bool pastGate(const Point3f& p, double opl, const OplGate& gate, const LightBound& lights) {
+  return gate.end < Infinity && opl + double(lights.distanceFrom(p)) >= gate.end;
+}
+
+/// The longest |x - y| + |y - c| over the points y of `box` (valid): the
+/// sum is convex in y, so it is largest at a corner. A bound of the length of
+/// any path from x through the box to c.
+float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c);
+
+/// A free flight conditioned to scatter before `reach` in a homogeneous
+/// medium (majorant() = sigma_t): the channel is picked in proportion to its
+/// probability of scattering before `reach`, the distance from that channel's
+/// exponential truncated there, so the density is the medium's
+/// freeFlightPdf(t) / P with P = mean_c (1 - exp(-sigma_t[c] reach)), and
+/// the weight sigma_s T(t) P / freeFlightPdf(t): the untruncated estimator
+/// times P(s < reach), exact, with every sample inside. Uses two random
+/// numbers, as HomogeneousMedium::sampleDistance. ms.weight is zero when
+/// nothing can scatter before `reach`.
+MediumSample sampleFreeFlightBefore(const Medium& medium, const Ray& ray, float reach, Sampler& sampler);
+/// P of sampleFreeFlightBefore.
+float scatterProbabilityBefore(const Medium& medium, float reach);
 
 }  // namespace femto
