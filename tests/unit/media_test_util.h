@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -17,6 +19,27 @@
 #include "render_test_util.h"
 
 namespace femto::test {
+
+/// A Mitsuba .vol density grid (float32, one channel) on the box
+/// [-halfExtent, halfExtent]^3: `res`^3 vertex samples from 0.1 to 1.5 in a
+/// pattern that is neither smooth nor separable, so free flights and
+/// transmittance must track it.
+inline void writeDensityGrid(const std::filesystem::path& file, int res, float halfExtent) {
+  std::ofstream out(file, std::ios::binary);
+  out.write("VOL", 3);
+  char version = 3;
+  out.write(&version, 1);
+  int32_t header[5] = {1, res, res, res, 1};
+  out.write(reinterpret_cast<const char*>(header), sizeof header);
+  float bounds[6] = {-halfExtent, -halfExtent, -halfExtent, halfExtent, halfExtent, halfExtent};
+  out.write(reinterpret_cast<const char*>(bounds), sizeof bounds);
+  for (int z = 0; z < res; ++z)
+    for (int y = 0; y < res; ++y)
+      for (int x = 0; x < res; ++x) {
+        float density = 0.1f + 1.4f * float((x + 2 * y + 3 * z) % 5) / 4.0f;
+        out.write(reinterpret_cast<const char*>(&density), sizeof density);
+      }
+}
 
 /// Load a whole scene from XML in strict mode (plugins from the build tree);
 /// errors name the file `name`.

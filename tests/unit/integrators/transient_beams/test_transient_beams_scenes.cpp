@@ -77,27 +77,6 @@ const char* Fog = R"(<medium type="homogeneous" id="fog"><float name="sigma_t" v
 const char* PointLightElement = R"(<emitter type="point"><point name="position" x="0.5" y="1.7" z="1"/>
     <float name="intensity" value="3"/></emitter>)";
 
-/// A Mitsuba .vol density grid (float32, one channel) on the room's box
-/// [-2, 2]^3: `res`^3 vertex samples varying from 0.1 to 1.5 in a pattern
-/// that is neither smooth nor separable, so free flights and transmittance
-/// must track it.
-void writeDensityGrid(const std::filesystem::path& file, int res) {
-  std::ofstream out(file, std::ios::binary);
-  out.write("VOL", 3);
-  char version = 3;
-  out.write(&version, 1);
-  int32_t header[5] = {1, res, res, res, 1};
-  out.write(reinterpret_cast<const char*>(header), sizeof header);
-  float bounds[6] = {-2, -2, -2, 2, 2, 2};
-  out.write(reinterpret_cast<const char*>(bounds), sizeof bounds);
-  for (int z = 0; z < res; ++z)
-    for (int y = 0; y < res; ++y)
-      for (int x = 0; x < res; ++x) {
-        float density = 0.1f + 1.4f * float((x + 2 * y + 3 * z) % 5) / 4.0f;
-        out.write(reinterpret_cast<const char*>(&density), sizeof density);
-      }
-}
-
 }  // namespace
 
 TEST(TransientBeamsScenes, HeterogeneousMediumAgreesWithTransientPath) {
@@ -106,7 +85,7 @@ TEST(TransientBeamsScenes, HeterogeneousMediumAgreesWithTransientPath) {
   // segment meets the beam.
   BeamsCase s;
   s.dir = scratchDir("beams-grid");
-  writeDensityGrid(s.dir / "density.vol", 5);
+  writeDensityGrid(s.dir / "density.vol", 5, 2.0f);
   // transient_path's noise dominates the tolerance here: more samples make
   // the test see e.g. sigma_s taken at the beam's start instead of at the
   // camera segment (steady image 8 % too bright).

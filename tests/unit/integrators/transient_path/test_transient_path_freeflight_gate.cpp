@@ -27,25 +27,6 @@ using namespace femto::test;
 
 namespace {
 
-/// A Mitsuba .vol density grid on [-1, 1]^3: `res`^3 samples from 0.1 to 1.5
-/// in a pattern that is neither smooth nor separable.
-void writeDensityGrid(const std::filesystem::path& file, int res) {
-  std::ofstream out(file, std::ios::binary);
-  out.write("VOL", 3);
-  char version = 3;
-  out.write(&version, 1);
-  int32_t header[5] = {1, res, res, res, 1};
-  out.write(reinterpret_cast<const char*>(header), sizeof header);
-  float bounds[6] = {-1, -1, -1, 1, 1, 1};
-  out.write(reinterpret_cast<const char*>(bounds), sizeof bounds);
-  for (int z = 0; z < res; ++z)
-    for (int y = 0; y < res; ++y)
-      for (int x = 0; x < res; ++x) {
-        float density = 0.1f + 1.4f * float((x + 2 * y + 3 * z) % 5) / 4.0f;
-        out.write(reinterpret_cast<const char*>(&density), sizeof density);
-      }
-}
-
 /// A fog cube (index-matched, medium `mediumXml` with id "fog") holding a
 /// diffuse floor and a point light, seen from outside at z = 4.
 std::shared_ptr<Scene> fogRoom(bool gating, bool observerTime, const std::string& mediumXml, const Point3f& light,
@@ -127,7 +108,7 @@ TEST(TransientPathFreeFlightGate, HomogeneousRoomsAgreeWithUngated) {
 TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
   // Delta (spectral) tracking up to the reach only; paths that pass it end.
   auto dir = scratchDir("freeflight-gate-grid");
-  writeDensityGrid(dir / "density.vol", 6);
+  writeDensityGrid(dir / "density.vol", 6, 1.0f);
   PCG32 scenes(91, 5);
   for (int k = 0; k < 2; ++k) {
     float scale = 0.4f + 0.8f * scenes.nextFloat();
