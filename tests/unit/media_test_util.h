@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -46,14 +47,20 @@ inline void writeDensityGrid(const std::filesystem::path& file, int res, float h
 inline std::shared_ptr<Scene> loadSceneStrict(const std::string& xml,
                                               const std::filesystem::path& dir = std::filesystem::temp_directory_path(),
                                               const std::string& name = "<media test>") {
-  static bool searchPathSet = [] {
-    PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
-    return true;
-  }();
-  (void)searchPathSet;
+  usePluginsFromBuildTree();
   LoadOptions options;
   options.strict = true;
   return loadSceneFromString(xml, dir, options, name);
+}
+
+/// Load scenes/`name`/scene.xml of the source tree in strict mode with `defines`.
+inline std::shared_ptr<Scene> loadShippedSceneStrict(const std::string& name,
+                                                     const std::map<std::string, std::string>& defines) {
+  usePluginsFromBuildTree();
+  LoadOptions options;
+  options.strict = true;
+  options.defines = defines;
+  return loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes" / name / "scene.xml", options);
 }
 
 /// The medium with id "m" of a scene whose sensor sits in it:

@@ -12,14 +12,19 @@
 
 namespace femto::test {
 
-/// Create plugin object `props.pluginName()` of `kind`, cast to T.
-template <typename T>
-std::shared_ptr<T> makePlugin(ObjectKind kind, const Properties& props) {
+/// Put the build tree's plugin folder first on the search path (once).
+inline void usePluginsFromBuildTree() {
   static bool prepared = [] {
     PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
     return true;
   }();
   (void)prepared;
+}
+
+/// Create plugin object `props.pluginName()` of `kind`, cast to T.
+template <typename T>
+std::shared_ptr<T> makePlugin(ObjectKind kind, const Properties& props) {
+  usePluginsFromBuildTree();
   return std::dynamic_pointer_cast<T>(PluginManager::instance().create(kind, props));
 }
 

@@ -130,20 +130,12 @@ TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
 
 /// scenes/cornell-box-fog, gated or not, with `maxDepth`.
 std::shared_ptr<Scene> fogBox(bool gating, int maxDepth, bool skipBeforeWindow = false) {
-  static bool searchPathSet = [] {
-    PluginManager::instance().prependSearchPath(FEMTO_PLUGIN_DIR);
-    return true;
-  }();
-  (void)searchPathSet;
-  LoadOptions options;
-  options.strict = true;
-  options.defines = {{"resolution", "8"},
-                     {"spp", "1"},
-                     {"frames", "false"},
-                     {"max_depth", std::to_string(maxDepth)},
-                     {"time_gating", gating ? "true" : "false"},
-                     {"skip_before_window", gating && skipBeforeWindow ? "true" : "false"}};
-  return loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml", options);
+  return loadShippedSceneStrict("cornell-box-fog", {{"resolution", "8"},
+                                                    {"spp", "1"},
+                                                    {"frames", "false"},
+                                                    {"max_depth", std::to_string(maxDepth)},
+                                                    {"time_gating", gating ? "true" : "false"},
+                                                    {"skip_before_window", gating && skipBeforeWindow ? "true" : "false"}});
 }
 
 Ray fogBoxRay(PCG32& rng) {
