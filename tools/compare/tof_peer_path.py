@@ -153,7 +153,8 @@ def main(argv):
     with tempfile.TemporaryDirectory(prefix="tof-peer-path-") as out_dir:
         header("transient_path on the peer's scene: strategies and reference protocols", "tools/compare/tof_peer_path.py",
                f"tools/compare/tof_peer_path.py --spp {','.join(map(str, args.spp))} "
-               f"--protocol-resolution {args.protocol_resolution}",
+               f"--protocol-resolution {args.protocol_resolution}"
+               f"{' --only ' + args.only if args.only != '12' else ''}",
                ["CPU = user + system seconds of the femto process, one run each"], threads=2)
         if "1" in args.only:
             table_peer_reference(args, out_dir)
