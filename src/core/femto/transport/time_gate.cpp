@@ -7,31 +7,6 @@
 #include <femto/render/sampler.h>
 
 namespace femto {
-namespace {
-
-/// The t >= 0 with t + |o + t d - c| = length, for |oc|^2 = r2 and
-/// delta = dot(oc, d): squaring |x(t) - c| = length - t gives
-/// t = (length^2 - r2) / (2 (length - delta)), valid for length >= |oc|
-/// (then length - delta > 0 unless c lies ahead on the ray, where g stays
-/// at length |oc| up to t = delta).
-double distanceOnEllipsoid(double length, double r2, double delta) {
-  if (!(length > 0.0) || !(length * length > r2)) return 0.0;
-  if (length == Infinity) return Infinity;
-  double denominator = 2.0 * (length - delta);
-  return denominator > 0.0 ? (length * length - r2) / denominator : Infinity;
-}
-
-}  // namespace
-
-DistanceRange distancesArrivingWithin(const Point3f& o, const Vec3f& d, const Point3f& c, double lengthA,
-                                      double lengthB) {
-  Vec3f oc = c - o;
-  double r2 = double(dot(oc, oc)), delta = double(dot(oc, d));
-  DistanceRange range;
-  range.t0 = distanceOnEllipsoid(lengthA, r2, delta);
-  range.t1 = distanceOnEllipsoid(lengthB, r2, delta);
-  return range;
-}
 
 double distanceReaching(const Point3f& o, const Vec3f& d, const Point3f& c, double eta, double length) {
   Vec3f oc = c - o;
@@ -42,10 +17,20 @@ double distanceReaching(const Point3f& o, const Vec3f& d, const Point3f& c, doub
   // A = eta^2 - 1, B = eta length - delta (> 0: length > |oc| >= delta),
   // C = length^2 - |oc|^2 (> 0). The smaller root is the one with
   // length - eta t >= 0 (the other solves eta t - |x(t) - c| = length), in
-  // the form that stays exact for A = 0 (distanceOnEllipsoid's formula).
+  // the form that stays exact for A = 0: eta = 1 gives t = C / (2 B), the
+  // ellipsoid with foci o and c (distancesArrivingWithin).
   double a = eta * eta - 1.0, b = eta * length - delta, cc = length * length - r2;
   double denominator = b + std::sqrt(std::max(0.0, b * b - a * cc));
   return denominator > 0.0 ? cc / denominator : Infinity;
+}
+
+DistanceRange distancesArrivingWithin(const Point3f& o, const Vec3f& d, const Point3f& c, double lengthA,
+                                      double lengthB) {
+  // t + |x(t) - c| = length: the ellipsoid with foci o and c, distanceReaching at eta = 1.
+  DistanceRange range;
+  range.t0 = distanceReaching(o, d, c, 1.0, lengthA);
+  range.t1 = distanceReaching(o, d, c, 1.0, lengthB);
+  return range;
 }
 
 float LightBound::distanceFrom(const Point3f& p) const {
