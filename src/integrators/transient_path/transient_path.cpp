@@ -242,7 +242,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (timeGating_) {
       s.gate = oplGate(scene, recorder);
       s.lights = lightBound(scene);
-      s.etaMax = largestEta(scene);
+      s.etaMax = scene.largestMediumEta();
     }
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       SurfaceInteraction si;
@@ -526,22 +526,6 @@ class TransientPathIntegrator : public TransientIntegrator {
   bool arrivesBeforeWindow(const PathState& s, double opl, float dist) const {
     return skipBeforeWindow_ && std::isfinite(dist) &&
            opl + double(std::max(s.etaMax, s.surfaceEta)) * dist < s.gate.start;
-  }
-
-  /// The largest refractive index of the media the scene names (shapes'
-  /// interiors and exteriors, the sensor, the emitters), at least 1.
-  static float largestEta(const Scene& scene) {
-    float eta = 1.0f;
-    auto add = [&](const Medium* medium) {
-      if (medium) eta = std::max(eta, medium->eta());
-    };
-    for (const auto& shape : scene.shapes()) {
-      add(shape->interiorMedium());
-      add(shape->exteriorMedium());
-    }
-    add(scene.sensor().medium());
-    for (const auto& emitter : scene.emitters()) add(emitter->medium());
-    return eta;
   }
 
   /// The light-directed next-event vertices (see the header): from the

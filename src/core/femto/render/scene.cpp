@@ -9,6 +9,7 @@
 #include <femto/render/shape_group.h>
 #include <femto/render/transient_integrator.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/medium.h>
 
 namespace femto {
 
@@ -55,15 +56,31 @@ Scene::Scene(const Properties& props) {
       sensor_->film().useIntegratorTimeFilter(*filter, transient->requestedTimeFilterAt());
 
   // A shapegroup is only seen through its instances (whose hits report the
-  // group's shapes, so those decide what paths may cross).
+  // group's shapes, so those decide what paths may cross and which media
+  // they meet). A group its instances reference is not among the scene's
+  // shapes, so its shapes are reached through each instance; a group listed
+  // on its own is counted directly.
+  auto addMedium = [&](const Medium* medium) {
+    if (medium) largestMediumEta_ = std::max(largestMediumEta_, medium->eta());
+  };
+  auto addSurface = [&](const Shape& shape) {
+    hasPassThroughShapes_ |= isPassThrough(shape.bsdf());
+    addMedium(shape.interiorMedium());
+    addMedium(shape.exteriorMedium());
+  };
   for (const auto& shape : shapes_) {
     if (auto group = dynamic_cast<const ShapeGroup*>(shape.get())) {
-      for (const auto& child : group->shapes()) hasPassThroughShapes_ |= isPassThrough(child->bsdf());
+      for (const auto& child : group->shapes()) addSurface(*child);
       continue;
     }
     bbox_.expand(shape->bbox());
-    if (!dynamic_cast<const ShapeInstance*>(shape.get())) hasPassThroughShapes_ |= isPassThrough(shape->bsdf());
+    if (auto instance = dynamic_cast<const ShapeInstance*>(shape.get()))
+      for (const auto& child : instance->group().shapes()) addSurface(*child);
+    else
+      addSurface(*shape);
   }
+  addMedium(sensor_->medium());
+  for (const auto& emitter : emitters_) addMedium(emitter->medium());
   accel_ = std::make_unique<Accel>(shapes_);
   warnIfEmpty(props);
 

@@ -59,6 +59,11 @@ class Scene : public Object {
   /// (isPassThrough in volumetric.h: media boundaries)? When none does, a
   /// connection outside media is a plain shadow ray.
   bool hasPassThroughShapes() const { return hasPassThroughShapes_; }
+  /// The largest refractive index of the media the scene names (shapes'
+  /// interiors and exteriors, shapegroups' shapes included, the sensor's and
+  /// the emitters'), at least 1: light crossing a length d through them takes
+  /// at most this times d of OPL (time gating's bounds).
+  float largestMediumEta() const { return largestMediumEta_; }
 
  private:
   void warnIfEmpty(const Properties& props) const;
@@ -73,6 +78,7 @@ class Scene : public Object {
   std::shared_ptr<Integrator> integrator_;
   BoundingBox3f bbox_;
   bool hasPassThroughShapes_ = false;
+  float largestMediumEta_ = 1.0f;
 };
 
 }  // namespace femto

@@ -151,3 +151,31 @@ TEST(Instancing, InstanceMustReferenceAShapeGroup) {
   });
   EXPECT_NE(message.find("one level of instancing"), std::string::npos) << message;
 }
+
+TEST(Instancing, TheSceneSeesMediaAndPassThroughShapesInsideShapeGroups) {
+  // Time gating bounds a connection's OPL by the scene's largest refractive
+  // index (Scene::largestMediumEta), and connections cross pass-through
+  // shapes only when the scene knows it has some (hasPassThroughShapes): a
+  // medium or a null-BSDF shape named only inside a group, reached through an
+  // instance, must count (the group itself is not among the scene's shapes).
+  auto scene = loadStrict(R"(<scene version="3.0.0">
+  <medium type="homogeneous" id="water"><float name="sigma_t" value="1"/><float name="eta" value="1.33"/></medium>
+  <medium type="homogeneous" id="air"><float name="sigma_t" value="1"/><float name="eta" value="1.1"/></medium>
+  <shape type="shapegroup" id="group">
+    <shape type="sphere"><bsdf type="null"/><ref name="interior" id="water"/></shape>
+  </shape>
+  <shape type="instance"><ref id="group"/></shape>
+  <shape type="rectangle"><bsdf type="null"/><ref name="exterior" id="air"/>
+    <transform name="to_world"><translate z="-5"/></transform></shape>
+</scene>)");
+  EXPECT_FLOAT_EQ(scene->largestMediumEta(), 1.33f);
+  auto plain = loadStrict(R"(<scene version="3.0.0"><shape type="sphere"/></scene>)");
+  EXPECT_FLOAT_EQ(plain->largestMediumEta(), 1.0f);
+  EXPECT_FALSE(plain->hasPassThroughShapes());
+  auto instancedBoundary = loadStrict(R"(<scene version="3.0.0">
+  <shape type="shapegroup" id="group"><shape type="sphere"><bsdf type="null"/></shape></shape>
+  <shape type="instance"><ref id="group"/></shape>
+</scene>)");
+  EXPECT_TRUE(instancedBoundary->hasPassThroughShapes());
+}
+
