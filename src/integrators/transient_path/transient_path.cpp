@@ -370,22 +370,19 @@ class TransientPathIntegrator : public TransientIntegrator {
     double reach = gateReach(ray, eta, startOpl - eta * double(distance(vertex, ray.o)), gate, lights);
     if (!(reach < double(tMax))) return g;
     g.reach = float(reach);
-    if (medium.isHomogeneous()) g.probability = scatterProbabilityBefore(medium, g.reach);
+    if (medium.isHomogeneous()) g.probability = medium.scatterProbabilityBefore(g.reach);
     return g;
   }
 
   /// The free flight along the current medium segment [0, tMax]. With a
-  /// residual-time truncation short of tMax (GatedSegment), in homogeneous
-  /// media conditioned to scatter before the reach, weighted by the
-  /// probability of doing so; in heterogeneous media tracked up to the
-  /// reach only, and a path that passes it ends (zero weight): beyond it
-  /// nothing arrives before the gate ends.
+  /// residual-time truncation short of tMax (GatedSegment), conditioned on
+  /// an event before the reach and weighted by its probability
+  /// (Medium::sampleDistanceBefore: exactly in homogeneous media, on the
+  /// first tentative collision in heterogeneous ones); a path that passes
+  /// the reach ends (zero weight): beyond it nothing arrives before the gate ends.
   MediumSample sampleFreeFlight(const PathState& s, float tMax, Sampler& sampler) const {
     if (!s.gated.truncates(tMax)) return s.medium->sampleDistance(s.ray, tMax, sampler);
-    if (s.medium->isHomogeneous()) return sampleFreeFlightBefore(*s.medium, s.ray, s.gated.reach, sampler);
-    MediumSample ms = s.medium->sampleDistance(s.ray, s.gated.reach, sampler);
-    if (!ms.scattered) ms.weight = Color3f(0.0f);
-    return ms;
+    return s.medium->sampleDistanceBefore(s.ray, s.gated.reach, sampler);
   }
 
   /// Density of the free-flight vertex at distance t on the current

@@ -22,6 +22,7 @@
 // | scale             | float            | 1         | multiplies the coefficients                    | -        |
 // | eta               | float            | 1         | refractive index (OPL per unit length)         | -        |
 // | (nested) phase    | phase            | isotropic | phase function                                 | -        |
+#include <algorithm>
 #include <cmath>
 
 #include <femto/core/plugin.h>
@@ -88,32 +89,30 @@ class HeterogeneousMedium final : public Medium {
     ms.t = tMax;
     float t, t1;
     if (!(majorant_ > 0.0f) || !clipToBox(ray, density_->bbox(), tMax, t, t1)) return ms;
-    Color3f weight(1.0f);
-    for (;;) {
-      t -= std::log1p(-sampler.next1D()) / majorant_;
-      if (!(t < t1)) break;
-      Point3f p = ray(t);
-      Color3f sigmaT = sigmaT_ * density_->evalFloat(p);
-      Color3f sigmaS = sigmaT * albedoAt(p);
-      Color3f sigmaN = Color3f(majorant_) - sigmaT;  // null-collision coefficient, >= 0 by the majorant
-      // History-aware probabilities (Kutz et al. 2017, sec. 5.2): proportional
-      // to the mean over channels of the current weight times each coefficient.
-      float scatter = (weight * sigmaS).average(), null = (weight * sigmaN).average();
-      if (!(scatter + null > 0.0f)) {  // purely absorbing here: the path carries nothing further
-        ms.weight = Color3f(0.0f);
-        return ms;
-      }
-      float pScatter = scatter / (scatter + null);
-      if (sampler.next1D() < pScatter) {
-        ms.scattered = true;
-        ms.t = t;
-        ms.p = p;
-        ms.weight = weight * sigmaS / (majorant_ * pScatter);
-        return ms;
-      }
-      weight = weight * sigmaN / (majorant_ * (1.0f - pScatter));
-    }
-    ms.weight = weight;
+    t -= std::log1p(-sampler.next1D()) / majorant_;
+    return trackFrom(ray, t, t1, Color3f(1.0f), ms, sampler);
+  }
+
+  /// Conditioned on the first tentative collision falling before `reach`:
+  /// only paths with one there can scatter before `reach`, so sampling it
+  /// from the majorant's exponential truncated at `reach` (inside the box)
+  /// and weighting by its probability P = 1 - exp(-m (reach - t0)) keeps
+  /// sampleDistance's expectation for scattering events before `reach`
+  /// (the same conditioning as the homogeneous medium's, on the tentative
+  /// collision; for a constant density it is that of the homogeneous medium
+  /// in grey). Later tentative collisions are unconditioned: a path whose
+  /// null collisions carry it past `reach` gets weight zero.
+  MediumSample sampleDistanceBefore(const Ray& ray, float reach, Sampler& sampler) const override {
+    MediumSample ms;
+    ms.t = reach;
+    ms.weight = Color3f(0.0f);
+    float t, t1;
+    if (!(majorant_ > 0.0f) || !clipToBox(ray, density_->bbox(), reach, t, t1)) return ms;
+    float probability = -std::expm1(-majorant_ * (t1 - t));
+    if (!(probability > 0.0f)) return ms;
+    t = std::min(t - std::log1p(-sampler.next1D() * probability) / majorant_, std::nextafter(t1, 0.0f));
+    ms = trackFrom(ray, t, t1, Color3f(probability), ms, sampler);
+    if (!ms.scattered) ms.weight = Color3f(0.0f);
     return ms;
   }
 
@@ -142,6 +141,38 @@ class HeterogeneousMedium final : public Medium {
 
  private:
   Color3f albedoAt(const Point3f& p) const { return albedoVolume_ ? albedoVolume_->evalColor(p) : albedo_; }
+
+  /// Spectral tracking from a tentative collision at `t` (none when t >= t1,
+  /// the end of the segment in the box) carrying `weight`: scatter or pass
+  /// the null collision with history-aware probabilities (Kutz et al. 2017,
+  /// sec. 5.2: the mean over channels of the current weight times each
+  /// coefficient), then the next tentative collision at rate m. `ms` holds
+  /// the crossing's t (the segment's end).
+  MediumSample trackFrom(const Ray& ray, float t, float t1, Color3f weight, MediumSample ms, Sampler& sampler) const {
+    for (;; t -= std::log1p(-sampler.next1D()) / majorant_) {
+      if (!(t < t1)) break;
+      Point3f p = ray(t);
+      Color3f sigmaT = sigmaT_ * density_->evalFloat(p);
+      Color3f sigmaS = sigmaT * albedoAt(p);
+      Color3f sigmaN = Color3f(majorant_) - sigmaT;  // null-collision coefficient, >= 0 by the majorant
+      float scatter = (weight * sigmaS).average(), null = (weight * sigmaN).average();
+      if (!(scatter + null > 0.0f)) {  // purely absorbing here: the path carries nothing further
+        ms.weight = Color3f(0.0f);
+        return ms;
+      }
+      float pScatter = scatter / (scatter + null);
+      if (sampler.next1D() < pScatter) {
+        ms.scattered = true;
+        ms.t = t;
+        ms.p = p;
+        ms.weight = weight * sigmaS / (majorant_ * pScatter);
+        return ms;
+      }
+      weight = weight * sigmaN / (majorant_ * (1.0f - pScatter));
+    }
+    ms.weight = weight;
+    return ms;
+  }
 
   std::shared_ptr<Volume> density_, albedoVolume_;
   Color3f sigmaT_, albedo_;

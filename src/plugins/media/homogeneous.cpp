@@ -13,6 +13,7 @@
 // | eta               | float      | 1         | refractive index (OPL per unit length)            | -        |
 // | (nested) phase    | phase      | isotropic | phase function                                    | -        |
 // Give either sigma_s/sigma_a or sigma_t/albedo.
+#include <algorithm>
 #include <cmath>
 
 #include <femto/core/plugin.h>
@@ -24,6 +25,8 @@ namespace {
 
 /// exp(-sigma * t) with exp(-0 * inf) = 1 (a channel that does not interact).
 float transmit(float sigma, float t) { return sigma > 0.0f ? std::exp(-sigma * t) : 1.0f; }
+/// 1 - transmit(sigma, t), accurate for small sigma t.
+float scatterBefore(float sigma, float t) { return sigma > 0.0f ? -std::expm1(-sigma * t) : 0.0f; }
 
 }  // namespace
 
@@ -55,6 +58,47 @@ class HomogeneousMedium final : public Medium {
       ms.weight = probability > 0.0f ? tr / probability : Color3f(0.0f);
     }
     return ms;
+  }
+
+  /// Conditioned on scattering before `reach`: the channel in proportion to
+  /// its probability of scattering before `reach`, the distance from that
+  /// channel's exponential truncated there, so the density is
+  /// freeFlightPdf(t) / P with P = mean_c (1 - exp(-sigma_t[c] reach)) and the
+  /// weight sigma_s T(t) P / freeFlightPdf(t): sampleDistance's estimator
+  /// times P(t < reach), every sample inside. Two random numbers, as
+  /// sampleDistance.
+  MediumSample sampleDistanceBefore(const Ray& ray, float reach, Sampler& sampler) const override {
+    MediumSample ms;
+    ms.t = reach;
+    float uChannel = sampler.next1D(), uDistance = sampler.next1D();
+    float channelP[3], total = 0.0f;
+    for (int c = 0; c < 3; ++c) total += channelP[c] = scatterBefore(sigmaT_[c], reach);
+    if (!(total > 0.0f)) {  // nothing scatters before `reach`
+      ms.weight = Color3f(0.0f);
+      return ms;
+    }
+    // The channel in proportion to channelP (the last one with some, should rounding run past the end).
+    float target = uChannel * total;
+    int channel = 0;
+    for (int c = 0; c < 3; ++c) {
+      if (!(channelP[c] > 0.0f)) continue;
+      channel = c;
+      if (target < channelP[c]) break;
+      target -= channelP[c];
+    }
+    float t = -std::log1p(-uDistance * channelP[channel]) / sigmaT_[channel];
+    t = std::min(t, std::nextafter(reach, 0.0f));
+    float pdf = freeFlightPdf(t);
+    ms.scattered = true;
+    ms.t = t;
+    ms.p = ray(t);
+    ms.weight = pdf > 0.0f ? sigmaS_ * transmittance(t) * (total / 3.0f) / pdf : Color3f(0.0f);
+    return ms;
+  }
+  float scatterProbabilityBefore(float reach) const override {
+    float p = 0.0f;
+    for (int c = 0; c < 3; ++c) p += scatterBefore(sigmaT_[c], reach);
+    return p / 3.0f;
   }
 
   Color3f transmittance(const Ray&, float tMax, Sampler&) const override { return transmittance(tMax); }

@@ -2,8 +2,9 @@
 // the path length g(t) = t + |o + t d - c|, and equiangular sampling of a
 // part [tStart, tEnd] of a segment: its density integrates to one there and
 // its samples stay in it. Residual-time truncation: the reach against
-// bisection on eta t + |o + t d - c| (eta >= 1), and free flights
-// conditioned to scatter before it against the closed form of what they estimate.
+// bisection on eta t + |o + t d - c| (eta >= 1); the free flights
+// conditioned to scatter before it are the media's (test_media_homogeneous.cpp,
+// test_media_heterogeneous.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -131,45 +132,4 @@ TEST(TimeGate, ReachOverLightsIsTheFarthestAndPastGateTheNearest) {
   EXPECT_NEAR(gateReach(ray, 1.5, 2.0, gate, lights), 4.0 / 1.5, 1e-12);
   EXPECT_FALSE(pastGate(Point3f(5.0f), 5.9, gate, lights));
   EXPECT_TRUE(pastGate(Point3f(5.0f), 6.0, gate, lights));
-}
-
-TEST(TimeGate, FreeFlightBeforeTheReachEstimatesTheTruncatedIntegral) {
-  // A chromatic homogeneous medium: E[weight f(t)] of free flights
-  // conditioned on t < reach must be the integral over [0, reach) of
-  // sigma_s T(t) f(t) per channel, for f = 1 and f = t; the samples stay
-  // inside, and the density is the medium's over P(t < reach).
-  auto scene = sceneWithMedium(R"(<medium id="m" type="homogeneous">
-      <rgb name="sigma_t" value="0.3, 1.2, 2.5"/><rgb name="albedo" value="0.9, 0.6, 0.8"/></medium>)");
-  const Medium& medium = *scene->sensor().medium();
-  const Color3f sigmaT(0.3f, 1.2f, 2.5f), sigmaS = sigmaT * Color3f(0.9f, 0.6f, 0.8f);
-  auto sampler = seededSampler(5);
-  Ray ray(Point3f(0.0f), Vec3f(0, 0, 1));
-  for (float reach : {0.15f, 0.9f, 3.0f}) {
-    const int n = 200000;
-    Mean zeroth[3], first[3];
-    float p = scatterProbabilityBefore(medium, reach);
-    for (int i = 0; i < n; ++i) {
-      MediumSample ms = sampleFreeFlightBefore(medium, ray, reach, *sampler);
-      ASSERT_TRUE(ms.scattered);
-      ASSERT_GE(ms.t, 0.0f);
-      ASSERT_LT(ms.t, reach);
-      for (int c = 0; c < 3; ++c) {
-        zeroth[c].add(ms.weight[c]);
-        first[c].add(ms.weight[c] * ms.t);
-      }
-    }
-    double expectedP = 0.0;
-    for (int c = 0; c < 3; ++c) expectedP += (1.0 - std::exp(-double(sigmaT[c]) * reach)) / 3.0;
-    EXPECT_NEAR(p, expectedP, 1e-6);
-    for (int c = 0; c < 3; ++c) {
-      double s = sigmaT[c], a = sigmaS[c] / s;
-      double e0 = a * (1.0 - std::exp(-s * reach));
-      double e1 = a * ((1.0 - std::exp(-s * reach)) / s - reach * std::exp(-s * reach));
-      EXPECT_NEAR(zeroth[c].mean(), e0, 4.0 * zeroth[c].standardError() + 1e-6)
-          << "reach " << reach << " channel " << c;
-      EXPECT_NEAR(first[c].mean(), e1, 4.0 * first[c].standardError() + 1e-6) << "reach " << reach << " channel " << c;
-    }
-  }
-  MediumSample none = sampleFreeFlightBefore(medium, ray, 0.0f, *sampler);
-  EXPECT_TRUE(none.weight.isBlack()) << "nothing scatters before 0";
 }

@@ -51,6 +51,16 @@ float Medium::freeFlightPdf(float) const {
   throw Error(str(toString(), " has no closed-form free-flight density (only homogeneous media do)"));
 }
 
+MediumSample Medium::sampleDistanceBefore(const Ray& ray, float reach, Sampler& sampler) const {
+  MediumSample ms = sampleDistance(ray, reach, sampler);
+  if (!ms.scattered) ms.weight = Color3f(0.0f);
+  return ms;
+}
+
+float Medium::scatterProbabilityBefore(float) const {
+  throw Error(str(toString(), " has no closed-form probability of scattering before a distance (only homogeneous media do)"));
+}
+
 std::string Medium::mediumString() const { return str("eta=", eta_, ", phase=", phase_->toString()); }
 
 }  // namespace femto

@@ -80,6 +80,19 @@ class Medium : public Object {
   /// (transport/equiangular.h). Homogeneous media only (isHomogeneous()); the
   /// default, for tracking in heterogeneous media that has no closed form, throws.
   virtual float freeFlightPdf(float t) const;
+  /// A free flight along `ray` that only matters if it scatters before
+  /// `reach` (time gating: past it no light arrives in the film's window,
+  /// transport/time_gate.h): the scattering events of sampleDistance(ray,
+  /// reach) in expectation, with the samples that would have crossed
+  /// [0, reach) removed where the medium can (conditioned on an event before
+  /// `reach`, weighted by its probability). A path that still crosses gets
+  /// weight zero. The default tracks up to `reach` and zeroes crossings.
+  virtual MediumSample sampleDistanceBefore(const Ray& ray, float reach, Sampler& sampler) const;
+  /// The probability with which sampleDistanceBefore conditions, when it
+  /// has a closed form (homogeneous media: free flights' chance to scatter
+  /// before `reach`, whose density is then freeFlightPdf(t) / it). The
+  /// default throws, as freeFlightPdf.
+  virtual float scatterProbabilityBefore(float reach) const;
 
   const PhaseFunction& phase() const { return *phase_; }
   /// Refractive index: light crossing distance d adds eta * d to its OPL.

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include <femto/math/constants.h>
-#include <femto/render/sampler.h>
 
 namespace femto {
 
@@ -60,44 +59,6 @@ float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c
     longest = std::max(longest, distance(x, corner) + distance(corner, c));
   }
   return longest;
-}
-
-float scatterProbabilityBefore(const Medium& medium, float reach) {
-  Color3f sigma = medium.majorant();
-  float p = 0.0f;
-  for (int c = 0; c < 3; ++c) p += sigma[c] > 0.0f ? -std::expm1(-sigma[c] * reach) : 0.0f;
-  return p / 3.0f;
-}
-
-MediumSample sampleFreeFlightBefore(const Medium& medium, const Ray& ray, float reach, Sampler& sampler) {
-  MediumSample ms;
-  ms.t = reach;
-  float uChannel = sampler.next1D(), uDistance = sampler.next1D();
-  Color3f sigma = medium.majorant();
-  float channelP[3], total = 0.0f;
-  for (int c = 0; c < 3; ++c) total += channelP[c] = sigma[c] > 0.0f ? -std::expm1(-sigma[c] * reach) : 0.0f;
-  if (!(total > 0.0f)) {  // nothing scatters before `reach`: the path cannot contribute
-    ms.weight = Color3f(0.0f);
-    return ms;
-  }
-  // The channel in proportion to channelP (the last one with some, should rounding run past the end).
-  float target = uChannel * total;
-  int channel = 0;
-  for (int c = 0; c < 3; ++c) {
-    if (!(channelP[c] > 0.0f)) continue;
-    channel = c;
-    if (target < channelP[c]) break;
-    target -= channelP[c];
-  }
-  float t = -std::log1p(-uDistance * channelP[channel]) / sigma[channel];
-  t = std::min(t, std::nextafter(reach, 0.0f));
-  float pdf = medium.freeFlightPdf(t);
-  ms.scattered = true;
-  ms.t = t;
-  ms.p = ray(t);
-  Color3f tr = medium.transmittance(ray, t, sampler);  // exact: homogeneous, no random numbers
-  ms.weight = pdf > 0.0f ? medium.scatteringCoefficient(ms.p) * tr * (total / 3.0f) / pdf : Color3f(0.0f);
-  return ms;
 }
 
 }  // namespace femto

@@ -15,7 +15,6 @@
 #include <femto/math/constants.h>
 #include <femto/math/ray.h>
 #include <femto/math/vector.h>
-#include <femto/render/medium.h>
 
 namespace femto {
 
@@ -81,18 +80,5 @@ inline bool pastGate(const Point3f& p, double opl, const OplGate& gate, const Li
 /// sum is convex in y, so it is largest at a corner. A bound of the length of
 /// any path from x through the box to c.
 float longestDetour(const Point3f& x, const BoundingBox3f& box, const Point3f& c);
-
-/// A free flight conditioned to scatter before `reach` in a homogeneous
-/// medium (majorant() = sigma_t): the channel is picked in proportion to its
-/// probability of scattering before `reach`, the distance from that channel's
-/// exponential truncated there, so the density is the medium's
-/// freeFlightPdf(t) / P with P = mean_c (1 - exp(-sigma_t[c] reach)), and
-/// the weight sigma_s T(t) P / freeFlightPdf(t): the untruncated estimator
-/// times P(s < reach), exact, with every sample inside. Uses two random
-/// numbers, as HomogeneousMedium::sampleDistance. ms.weight is zero when
-/// nothing can scatter before `reach`.
-MediumSample sampleFreeFlightBefore(const Medium& medium, const Ray& ray, float reach, Sampler& sampler);
-/// P of sampleFreeFlightBefore.
-float scatterProbabilityBefore(const Medium& medium, float reach);
 
 }  // namespace femto

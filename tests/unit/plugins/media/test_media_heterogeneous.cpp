@@ -121,6 +121,47 @@ std::shared_ptr<Scene> heterogeneousScene(const std::filesystem::path& dir, cons
       <rgb name="albedo" value="0.75, 0.2, 1.0"/><float name="scale" value="0.2"/></medium>)", version, dir);
 }
 
+/// A ray crossing the grid's box (world [-1, 1] x [-0.5, 0.5] x [-0.5, 0.5])
+/// obliquely, starting outside it, and the closed forms along it: inside the
+/// box, for t in [t0, t1] (slab method), the density is a cubic polynomial in
+/// t, which Simpson's rule integrates exactly.
+struct ObliqueCrossing {
+  Ray ray{Point3f(-1.5f, -0.7f, -0.2f), normalize(Vec3f(1.0f, 0.45f, 0.2f))};
+  double t0 = 0.0, t1 = 0.0;
+
+  explicit ObliqueCrossing(double tMax) {
+    t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+      double lo = (Vec3f(-1, -0.5f, -0.5f)[a] - ray.o[a]) / ray.d[a], hi = (Vec3f(1, 0.5f, 0.5f)[a] - ray.o[a]) / ray.d[a];
+      t0 = std::max(t0, std::min(lo, hi));
+      t1 = std::min(t1, std::max(lo, hi));
+    }
+  }
+  double density(double t) const {
+    Point3f local = ray(float(t)) + Vec3f(1.0f, 0.5f, 0.5f);
+    bool inside = local.x >= 0 && local.x <= 2 && local.y >= 0 && local.y <= 1 && local.z >= 0 && local.z <= 1;
+    return inside ? field(local) : 0.0;
+  }
+  double depthTo(double t) const {
+    return integrate([&](double u) { return density(u); }, t0, std::clamp(t, t0, t1), 64);
+  }
+  /// E[weight at scattering before `end`] = integral of sigma_s(t) T(0, t) t^power dt over [0, end).
+  double scattering(double sigmaT, double albedo, double end, int power = 0) const {
+    return integrate(
+        [&](double t) {
+          return albedo * sigmaT * density(t) * std::exp(-sigmaT * depthTo(t)) * std::pow(t, power);
+        },
+        t0, std::clamp(end, t0, t1), 512);
+  }
+};
+
+Color3f sigmaTOf(const std::string& version) {
+  return version == "0.6.0" ? Color3f(0.4f, 0.6f, 0.6f) * 0.5f : Color3f(0.2f);
+}
+Color3f albedoOf(const std::string& version) {
+  return version == "0.6.0" ? Color3f(0.75f, 1.0f / 6.0f, 1.0f) : Color3f(0.75f, 0.2f, 1.0f);
+}
+
 }  // namespace
 
 TEST(MediaHeterogeneous, TrackingMatchesQuadrature) {
@@ -130,46 +171,81 @@ TEST(MediaHeterogeneous, TrackingMatchesQuadrature) {
     SCOPED_TRACE(version);
     auto scene = heterogeneousScene(dir, version);
     const Medium& medium = *scene->sensor().medium();
-    Color3f sigmaT = std::string(version) == "0.6.0" ? Color3f(0.4f, 0.6f, 0.6f) * 0.5f : Color3f(0.2f);
-    Color3f albedo = std::string(version) == "0.6.0" ? Color3f(0.75f, 1.0f / 6.0f, 1.0f) : Color3f(0.75f, 0.2f, 1.0f);
-    // A ray crossing the box (world [-1, 1] x [-0.5, 0.5] x [-0.5, 0.5]) obliquely, starting outside it.
-    Ray ray(Point3f(-1.5f, -0.7f, -0.2f), normalize(Vec3f(1.0f, 0.45f, 0.2f)));
+    Color3f sigmaT = sigmaTOf(version), albedo = albedoOf(version);
     const float tMax = 2.6f;
-    auto density = [&](double t) {
-      Point3f world = ray(float(t));
-      Point3f local = world + Vec3f(1.0f, 0.5f, 0.5f);
-      bool inside = local.x >= 0 && local.x <= 2 && local.y >= 0 && local.y <= 1 && local.z >= 0 && local.z <= 1;
-      return inside ? field(local) : 0.0;
-    };
+    ObliqueCrossing crossing(tMax);
+    ASSERT_LT(crossing.t0, crossing.t1);
     auto sampler = seededSampler(21);
     Mean ratio[3], crossed[3], scattered[3];
     for (int i = 0; i < 100000; ++i) {
-      Color3f tr = medium.transmittance(ray, tMax, *sampler);
-      MediumSample ms = medium.sampleDistance(ray, tMax, *sampler);
+      Color3f tr = medium.transmittance(crossing.ray, tMax, *sampler);
+      MediumSample ms = medium.sampleDistance(crossing.ray, tMax, *sampler);
       for (int c = 0; c < 3; ++c) {
         ratio[c].add(tr[c]);
         crossed[c].add(ms.scattered ? 0.0 : ms.weight[c]);
         scattered[c].add(ms.scattered ? ms.weight[c] : 0.0);
       }
     }
-    // The ray is inside the box for t in [t0, t1] (slab method); there the
-    // density is a cubic polynomial in t, which Simpson's rule integrates exactly.
-    double t0 = 0.0, t1 = tMax;
-    for (int a = 0; a < 3; ++a) {
-      double lo = (Vec3f(-1, -0.5f, -0.5f)[a] - ray.o[a]) / ray.d[a], hi = (Vec3f(1, 0.5f, 0.5f)[a] - ray.o[a]) / ray.d[a];
-      t0 = std::max(t0, std::min(lo, hi));
-      t1 = std::min(t1, std::max(lo, hi));
-    }
-    ASSERT_LT(t0, t1);
-    auto depthTo = [&](double t) { return integrate(density, t0, std::clamp(t, t0, t1), 64); };
     for (int c = 0; c < 3; ++c) {
-      double depth = sigmaT[c] * depthTo(t1);
-      // E[weight at scattering] = integral of sigma_s(t) T(0, t) dt.
-      double scatter = integrate(
-          [&](double t) { return albedo[c] * sigmaT[c] * density(t) * std::exp(-sigmaT[c] * depthTo(t)); }, t0, t1, 512);
+      double depth = sigmaT[c] * crossing.depthTo(crossing.t1);
       expectWithinErrorBars(ratio[c], std::exp(-depth), 1e-5, str("ratio tracking, channel ", c));
       expectWithinErrorBars(crossed[c], std::exp(-depth), 1e-5, str("free-flight crossing, channel ", c));
-      expectWithinErrorBars(scattered[c], scatter, 1e-5, str("free-flight scattering, channel ", c));
+      expectWithinErrorBars(scattered[c], crossing.scattering(sigmaT[c], albedo[c], crossing.t1), 1e-5,
+                            str("free-flight scattering, channel ", c));
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MediaHeterogeneous, FreeFlightsBeforeAReachMatchQuadrature) {
+  // Time gating's truncated free flight (Medium::sampleDistanceBefore):
+  // conditioned on the first tentative collision before `reach`, weighted by
+  // its probability. E[weight t^k] over its scattering events must be the
+  // integral over [0, reach) of sigma_s T t^k (k = 0, 1), every event before
+  // `reach`, and 1/P times as many samples must scatter as tracking up to
+  // `reach` lets (the point of conditioning: fewer wasted paths).
+  auto dir = scratchDir("heterogeneous-before");
+  writeVol(dir / "grid.vol", 1);
+  for (const char* version : {"0.6.0", "3.0.0"}) {
+    auto scene = heterogeneousScene(dir, version);
+    const Medium& medium = *scene->sensor().medium();
+    Color3f sigmaT = sigmaTOf(version), albedo = albedoOf(version);
+    ObliqueCrossing crossing(Infinity);
+    // Inside the box, past it, and before the ray enters it.
+    for (double reach : {crossing.t0 + 0.3 * (crossing.t1 - crossing.t0), crossing.t1 + 0.5, 0.8 * crossing.t0}) {
+      SCOPED_TRACE(str(version, ", reach ", reach));
+      auto sampler = seededSampler(23);
+      Mean zeroth[3], first[3];
+      int conditionedScattered = 0, trackedScattered = 0;
+      const int n = 100000;
+      for (int i = 0; i < n; ++i) {
+        MediumSample ms = medium.sampleDistanceBefore(crossing.ray, float(reach), *sampler);
+        MediumSample tracked = medium.sampleDistance(crossing.ray, float(reach), *sampler);
+        conditionedScattered += ms.scattered;
+        trackedScattered += tracked.scattered;
+        if (ms.scattered) ASSERT_LT(ms.t, reach);
+        else ASSERT_TRUE(ms.weight.isBlack()) << "a crossing carries nothing";
+        for (int c = 0; c < 3; ++c) {
+          zeroth[c].add(ms.scattered ? ms.weight[c] : 0.0);
+          first[c].add(ms.scattered ? ms.weight[c] * ms.t : 0.0);
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        expectWithinErrorBars(zeroth[c], crossing.scattering(sigmaT[c], albedo[c], reach), 1e-5, str("channel ", c));
+        expectWithinErrorBars(first[c], crossing.scattering(sigmaT[c], albedo[c], reach, 1), 1e-5,
+                              str("channel ", c, ", first moment"));
+      }
+      if (reach > crossing.t0) {
+        // Conditioning on the first tentative collision (probability P) makes
+        // every later step the same: 1/P times as many events scatter.
+        double p = -std::expm1(-double(medium.majorant().maxValue()) * (std::min(reach, crossing.t1) - crossing.t0));
+        double pc = double(conditionedScattered) / n, pt = double(trackedScattered) / n;
+        double se = std::hypot(p * std::sqrt(pc * (1.0 - pc) / n), std::sqrt(pt * (1.0 - pt) / n));
+        EXPECT_NEAR(pc * p, pt, 5.0 * se) << "conditioned " << pc << ", tracked " << pt << ", P " << p;
+        if (reach < crossing.t1) EXPECT_LT(p, 0.7) << "the case conditions on something";
+      } else {
+        EXPECT_EQ(conditionedScattered, 0);
+      }
     }
   }
   std::filesystem::remove_all(dir);

@@ -1,7 +1,10 @@
 // The homogeneous medium against closed forms: transmittance exp(-sigma_t d),
-// the free-flight distribution (chi-square), unbiased chromatic weights, and
+// the free-flight distribution (chi-square), unbiased chromatic weights,
+// free flights conditioned to scatter before a reach (time gating), and
 // the parameter spellings of Mitsuba 0.6 and 3.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "chi2.h"
 #include "media_test_util.h"
@@ -139,4 +142,46 @@ TEST(MediaHomogeneous, PhaseFunctionIsNestedOrIsotropic) {
   EXPECT_NE(mediumOf(*scene).phase().toString().find("g=0.3"), std::string::npos);
   auto plain = sceneWithMedium(R"(<medium id="m" type="homogeneous"/>)");
   EXPECT_NE(mediumOf(*plain).phase().toString().find("Isotropic"), std::string::npos);
+}
+
+TEST(MediaHomogeneous, FreeFlightsBeforeAReachEstimateTheTruncatedIntegral) {
+  // Time gating's truncated free flight (Medium::sampleDistanceBefore) in a
+  // chromatic homogeneous medium: E[weight f(t)] of free flights
+  // conditioned on t < reach must be the integral over [0, reach) of
+  // sigma_s T(t) f(t) per channel, for f = 1 and f = t; the samples stay
+  // inside, and the density is the medium's over P(t < reach).
+  auto scene = sceneWithMedium(R"(<medium id="m" type="homogeneous">
+      <rgb name="sigma_t" value="0.3, 1.2, 2.5"/><rgb name="albedo" value="0.9, 0.6, 0.8"/></medium>)");
+  const Medium& medium = *scene->sensor().medium();
+  const Color3f sigmaT(0.3f, 1.2f, 2.5f), sigmaS = sigmaT * Color3f(0.9f, 0.6f, 0.8f);
+  auto sampler = seededSampler(5);
+  Ray ray(Point3f(0.0f), Vec3f(0, 0, 1));
+  for (float reach : {0.15f, 0.9f, 3.0f}) {
+    const int n = 200000;
+    Mean zeroth[3], first[3];
+    float p = medium.scatterProbabilityBefore(reach);
+    for (int i = 0; i < n; ++i) {
+      MediumSample ms = medium.sampleDistanceBefore(ray, reach, *sampler);
+      ASSERT_TRUE(ms.scattered);
+      ASSERT_GE(ms.t, 0.0f);
+      ASSERT_LT(ms.t, reach);
+      for (int c = 0; c < 3; ++c) {
+        zeroth[c].add(ms.weight[c]);
+        first[c].add(ms.weight[c] * ms.t);
+      }
+    }
+    double expectedP = 0.0;
+    for (int c = 0; c < 3; ++c) expectedP += (1.0 - std::exp(-double(sigmaT[c]) * reach)) / 3.0;
+    EXPECT_NEAR(p, expectedP, 1e-6);
+    for (int c = 0; c < 3; ++c) {
+      double s = sigmaT[c], a = sigmaS[c] / s;
+      double e0 = a * (1.0 - std::exp(-s * reach));
+      double e1 = a * ((1.0 - std::exp(-s * reach)) / s - reach * std::exp(-s * reach));
+      EXPECT_NEAR(zeroth[c].mean(), e0, 4.0 * zeroth[c].standardError() + 1e-6)
+          << "reach " << reach << " channel " << c;
+      EXPECT_NEAR(first[c].mean(), e1, 4.0 * first[c].standardError() + 1e-6) << "reach " << reach << " channel " << c;
+    }
+  }
+  MediumSample none = medium.sampleDistanceBefore(ray, 0.0f, *sampler);
+  EXPECT_TRUE(none.weight.isBlack()) << "nothing scatters before 0";
 }
