@@ -115,8 +115,10 @@ def table_windows(args, out_dir):
           "[3, 4.02) and the last 10 % [12.22, 13.24) in 51 bins. `late bins of full` scores the full render's "
           "bins 461..511 (the late window's OPLs) and charges the full render's CPU. Efficiency = 1 / (MSE × CPU) "
           "of the late window, relative to the full render's late bins. MSE per cell (volume values), pairwise. "
-          "`skip_before_window` leaves out next-event estimates of light arriving before the window (the steady "
-          "image and `_before` then lack it; the window's bins are those of `true`, at less CPU).\n")
+          "With `time_gating`, next-event connections whose light surely arrives before the window are made with "
+          "probability `before_window_rate` (default 1/8; weighted by its inverse, so the steady image and `_before` "
+          "keep their means); rate 1 makes them all (gating before this option), rate 0 none "
+          "(`skip_before_window`: the steady image and `_before` then lack that light).\n")
     print("| window | time_gating | CPU s | CPU / full window's | MSE in the window | MSE × CPU | efficiency |")
     print("|---|---|---|---|---|---|---|")
     full_cpu = {}
@@ -126,9 +128,10 @@ def table_windows(args, out_dir):
     for name, window, crop in rows:
         options = [("false", {}), ("true", {})]
         if name in ("first 10 %", "last 10 %"):
-            options.append(("true + skip_before_window", {"skip_before_window": "true"}))
+            options = [("false", {}), ("true, rate 1", {"before_window_rate": 1}), ("true (rate 1/8)", {}),
+                       ("true, rate 0", {"before_window_rate": 0})]
         for gating, extra in options:
-            _, e, _, cpu = measure_pairs(FOG, fog_defines(time_gating=gating.split()[0], **window, **extra), args.seeds,
+            _, e, _, cpu = measure_pairs(FOG, fog_defines(time_gating=gating.split()[0].rstrip(","), **window, **extra), args.seeds,
                                          out_dir, args.threads, crop)
             if name == "full":
                 full_cpu[gating] = cpu

@@ -52,10 +52,11 @@
 // the distance from which even a straight connection to the nearest light
 // arrives at or after the gate's end, nothing the path does can land before
 // it (triangle inequality, refractive indices >= 1, delays only add), so in
-// a homogeneous medium the free flight is conditioned on scattering before
-// that distance and weighted by the probability that it does (the surface
-// beyond is never reached), and in a heterogeneous one tracked only up to it
-// (a path that passes it ends); paths also end at a vertex whose OPL plus
+// a medium the free flight is conditioned on scattering before that
+// distance and weighted by the probability that it does (the surface beyond
+// is never reached; Medium::sampleDistanceBefore: in a heterogeneous one
+// the first tentative collision is conditioned, and a path that tracks past
+// the distance ends); paths also end at a vertex whose OPL plus
 // the distance to the nearest light reaches the gate's end. Lights not at a
 // point (area, environment, directional) give no distance: then only the
 // residual OPL bounds the reach. The gate's end is the recorder's horizon,
@@ -66,13 +67,14 @@
 // way through the scene's box to the lights arrives before the window
 // samples no light-directed vertex (its equiangular vertices could not land
 // in the window; the path's own MIS weights know: prevLightDirected).
-// skip_before_window = true (needs time_gating) also leaves out the
-// next-event connections whose light surely arrives before the window (at
-// most the scene's largest refractive index times their length): on a late
-// window those shadow rays are most of the time spent, and the window's
-// estimate is the same; the steady image and _before then lack most of the
-// light before the window, so it is off by default. Time gating itself is
-// off by default:
+// Next-event connections whose light surely arrives before the window (at
+// most the scene's largest refractive index times their length) are made
+// with probability before_window_rate (default 1/8) and weighted by its
+// inverse: on a late window those shadow rays are most of the time spent,
+// the window's estimate cannot change (nothing left out lands in it), and
+// the steady image and _before keep their means at more noise.
+// skip_before_window = true is rate 0: they then lack most of the light
+// before the window. Time gating itself is off by default:
 // with it the samples depend on the window, so a render split into windows is
 // equal to one render within noise only, not bit for bit
 // (test_transient_time_window_split.cpp). Paths end by
@@ -98,24 +100,25 @@
 // Depth counts path segments, as in Mitsuba: max_depth = 1 gives only
 // emitters seen directly, 2 adds single scattering and direct illumination.
 //
-// | name            | type    | default | meaning                                            | unit |
-// |-----------------|---------|---------|----------------------------------------------------|------|
-// | max_depth       | integer | -1      | longest path in segments (-1: no limit)            | -    |
-// | rr_depth        | integer | 5       | depth from which Russian roulette may end paths    | -    |
-// | hide_emitters   | boolean | false   | emitters seen directly by the camera appear black  | -    |
-// | observer_time   | boolean | true    | include the camera segment in the OPL              | -    |
-// | equiangular     | boolean | true    | equiangular next-event vertices toward point lights (false: free flights
-// only, for comparisons) | - | | light_directions | boolean | true   | a second next-event vertex per scattering
-// vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | -
-// | | time_gating     | boolean | false   | sample next-event distances toward point lights inside the film's time
-// window, truncate free flights past it | - | | skip_before_window | boolean | false | with time_gating: make no
-// next-event connection whose light arrives before the window (steady and _before then lack it) | - | | camera_unwarp   | boolean | false   | mitransient's name for observer_time = false       | -    | |
-// temporal_filter | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | -
-// | | gaussian_stddev | float   | 2       | mitransient: its standard deviation                | bins | |
-// discard_direct_light | boolean | false | mitransient: drop emission that phase/BSDF sampling (or the camera ray)
-// finds; next-event estimates stay | - | | version         | integer | -       | lajolla's volpath variant selector:
-// accepted, ignored | - | | block_size      | integer | 0       | mitransient's tile size: accepted, ignored (femto
-// picks its tiles) | - |
+// clang-format off
+// | name                 | type    | default | meaning                                                      | unit |
+// |----------------------|---------|---------|--------------------------------------------------------------|------|
+// | max_depth            | integer | -1      | longest path in segments (-1: no limit)                      | -    |
+// | rr_depth             | integer | 5       | depth from which Russian roulette may end paths              | -    |
+// | hide_emitters        | boolean | false   | emitters seen directly by the camera appear black            | -    |
+// | observer_time        | boolean | true    | include the camera segment in the OPL                        | -    |
+// | equiangular          | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
+// | light_directions     | boolean | true    | a second next-event vertex per scattering vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | - |
+// | time_gating          | boolean | false   | sample next-event distances toward point lights inside the film's time window, truncate free flights past it | - |
+// | before_window_rate   | float   | 0.125   | with time_gating: the share of next-event connections whose light arrives before the window that are made (weighted by its inverse) | - |
+// | skip_before_window   | boolean | false   | with time_gating: before_window_rate = 0 (steady and _before then lack that light) | - |
+// | camera_unwarp        | boolean | false   | mitransient's name for observer_time = false                 | -    |
+// | temporal_filter      | string  | ""      | mitransient: the film's time filter: "" (the film's own), "box", "gaussian" | - |
+// | gaussian_stddev      | float   | 2       | mitransient: its standard deviation                          | bins |
+// | discard_direct_light | boolean | false   | mitransient: drop emission that phase/BSDF sampling (or the camera ray) finds; next-event estimates stay | - |
+// | version              | integer | -       | lajolla's volpath variant selector: accepted, ignored        | -    |
+// | block_size           | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
+// clang-format on
 //
 // The same source builds mitransient's and Mitsuba 2's names for this
 // integrator as plugins of their own (src/plugins/CMakeLists.txt):
@@ -176,6 +179,16 @@ struct PathState : OpticalPath {
   // (hit distance or Infinity).
   bool equiangular = false;
   float segmentMax = 0.0f;
+  // The equiangular segment toward the light last asked for on this medium
+  // segment: its equiangular vertex and its free-flight vertex's MIS weight
+  // need the same one (atan2s and, gated, the window's ellipsoids), and the
+  // weight is computed by a function that only reads the path.
+  struct EquiangularCache {
+    bool valid = false;
+    Point3f light;
+    EquiangularSegment segment;
+  };
+  mutable EquiangularCache equiangularCache;
   // Whether `ray` continues straight from the scattering vertex `prev` (not
   // from the camera) through index-matched boundaries and homogeneous media
   // only, and that vertex also sampled a light-directed vertex: then that
@@ -217,9 +230,18 @@ class TransientPathIntegrator : public TransientIntegrator {
         equiangular_(props.getBool("equiangular", true)),
         lightDirections_(props.getBool("light_directions", true)),
         timeGating_(props.getBool("time_gating", false)),
-        skipBeforeWindow_(props.getBool("skip_before_window", false)) {
-    if (skipBeforeWindow_ && !timeGating_)
-      props.raise("skip_before_window", "skip_before_window needs time_gating = true (it skips light before its window)");
+        beforeWindowRate_(props.getFloat("before_window_rate", DefaultBeforeWindowRate)) {
+    if (props.getBool("skip_before_window", false)) {
+      if (!timeGating_)
+        props.raise("skip_before_window",
+                    "skip_before_window needs time_gating = true (it skips light before its window)");
+      if (props.has("before_window_rate"))
+        props.raise("skip_before_window",
+                    "give either skip_before_window or before_window_rate (skip = rate 0), not both");
+      beforeWindowRate_ = 0.0f;
+    }
+    if (!(beforeWindowRate_ >= 0.0f && beforeWindowRate_ <= 1.0f))
+      props.raise("before_window_rate", str("before_window_rate must be in [0, 1], got ", beforeWindowRate_));
     // mitransient's spelling: camera_unwarp = true removes the camera segment.
     if (props.has("camera_unwarp")) {
       if (props.has("observer_time"))
@@ -285,8 +307,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
                ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
                ", light_directions=", lightDirections_ ? "true" : "false",
-               ", time_gating=", timeGating_ ? "true" : "false",
-               ", skip_before_window=", skipBeforeWindow_ ? "true" : "false", "]");
+               ", time_gating=", timeGating_ ? "true" : "false", ", before_window_rate=", beforeWindowRate_, "]");
   }
 
  private:
@@ -324,7 +345,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     DirectionSample ds;
     Color3f emitterWeight = scene.sampleEmitterDirection(ref, sampler.next2D(), ds, false);
     if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
-    if (arrivesBeforeWindow(s, s.opl, ds.dist)) return;
+    float beforeWindow = beforeWindowWeight(s, s.opl, ds.dist, sampler);
+    if (!(beforeWindow > 0.0f)) return;
     // The OPL of the light segment is at least its length (eta >= 1): skip what the film cannot show.
     if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
     float pdf = 0.0f;
@@ -341,10 +363,11 @@ class TransientPathIntegrator : public TransientIntegrator {
       weight = powerHeuristic(1.0f, lightDirectedRatio(s, lightPosition), 0.0f);
     } else if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
       float equiangular = pdfEquiangular(equiangularToward(s, lightPosition), segmentT);
-      weight = powerHeuristic(freeFlightPdf(s, segmentT), equiangular,
-                              equiangular * lightDirectedRatio(s, lightPosition));
+      weight =
+          powerHeuristic(freeFlightPdf(s, segmentT), equiangular, equiangular * lightDirectedRatio(s, lightPosition));
     }
-    recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * weight,
+    recorder.addPulsed(s.opl + c.opl, s.opl + c.opl,
+                       s.throughput * f * emitterWeight * c.transmittance * (weight * beforeWindow),
                        ds.emitter->pulse());
   }
 
@@ -354,6 +377,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   void beginMediumSegment(PathState& s, float tMax) const {
     s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
+    s.equiangularCache.valid = false;
     s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
     s.gated = gatedSegment(s.gate, s.lights, s.ray, s.vertex, tMax, *s.medium, s.segmentStartOpl);
   }
@@ -362,8 +386,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// (whose origin may be offset from the exact `vertex`, at OPL `startOpl`):
   /// see GatedSegment. The offset is added to the OPL still available, so
   /// the reach stays a bound for the exact vertex.
-  static GatedSegment gatedSegment(const OplGate& gate, const LightBound& lights, const Ray& ray,
-                                   const Point3f& vertex, float tMax, const Medium& medium, double startOpl) {
+  static GatedSegment gatedSegment(const OplGate& gate, const LightBound& lights, const Ray& ray, const Point3f& vertex,
+                                   float tMax, const Medium& medium, double startOpl) {
     GatedSegment g;
     if (!gate.gates()) return g;
     double eta = medium.eta();
@@ -445,7 +469,13 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// delays and other media make some land outside, which costs variance,
   /// not bias: both strategies use this density).
   EquiangularSegment equiangularToward(const PathState& s, const Point3f& c) const {
-    return equiangularToward(s.ray, s.segmentMax, *s.medium, s.gate, s.segmentStartOpl, c);
+    PathState::EquiangularCache& cache = s.equiangularCache;
+    if (!cache.valid || !(cache.light == c)) {
+      cache.segment = equiangularToward(s.ray, s.segmentMax, *s.medium, s.gate, s.segmentStartOpl, c);
+      cache.light = c;
+      cache.valid = true;
+    }
+    return cache.segment;
   }
   /// The same for segment [0, tMax] of `ray` in `medium`, starting at OPL `startOpl`.
   static EquiangularSegment equiangularToward(const Ray& ray, float tMax, const Medium& medium, const OplGate& gate,
@@ -515,14 +545,21 @@ class TransientPathIntegrator : public TransientIntegrator {
     return true;
   }
 
-  /// skip_before_window: does a light connection of length `dist` from OPL
-  /// `opl` surely arrive before the window (at most etaMax times its length;
-  /// delays before `opl` counted)? Then it is not made: the window's
-  /// estimate does not change (nothing skipped could land in it), the
-  /// steady image and _before lose that light.
-  bool arrivesBeforeWindow(const PathState& s, double opl, float dist) const {
-    return skipBeforeWindow_ && std::isfinite(dist) &&
-           opl + double(std::max(s.etaMax, s.surfaceEta)) * dist < s.gate.start;
+  /// Time gating: the weight of a light connection of length `dist` from
+  /// OPL `opl`. 1 unless its light surely arrives before the window (at most
+  /// etaMax times its length; delays before `opl` counted); such a
+  /// connection is made with probability before_window_rate and weighted by
+  /// its inverse (Russian roulette: the steady image and _before keep their
+  /// means, at more noise; the window's estimate cannot change, nothing
+  /// left out lands in it), and 0 (not made) when the rate is 0
+  /// (skip_before_window). Why: on a late window those shadow rays are most
+  /// of the time spent (docs/BENCHMARKS.md, transient_path sampling (b)).
+  float beforeWindowWeight(const PathState& s, double opl, float dist, Sampler& sampler) const {
+    if (!timeGating_ || beforeWindowRate_ >= 1.0f || !std::isfinite(dist) ||
+        !(opl + double(std::max(s.etaMax, s.surfaceEta)) * dist < s.gate.start))
+      return 1.0f;
+    if (!(beforeWindowRate_ > 0.0f) || !(sampler.next1D() < beforeWindowRate_)) return 0.0f;
+    return 1.0f / beforeWindowRate_;
   }
 
   /// The light-directed next-event vertices (see the header): from the
@@ -559,8 +596,8 @@ class TransientPathIntegrator : public TransientIntegrator {
       float tMax = hitSurface ? hit.t : Infinity;
       if (medium) {
         GatedSegment gated = gatedSegment(s.gate, s.lights, ray, start, tMax, *medium, opl);
-        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, gated,
-                            crossing == 0 ? uDistance : sampler.next1D(), sampler, recorder);
+        lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, gated, crossing == 0 ? uDistance : sampler.next1D(),
+                            sampler, recorder);
         Color3f tr = medium->transmittance(ray, tMax, sampler);
         l.weight *= tr;
         // The path's own free flights end within a truncated segment (sampleFreeFlight).
@@ -649,7 +686,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     const BSDF* bsdf = hit.bsdf();
     if (!l.crossedMedium || !bsdf || !bsdf->hasSmooth()) return;
     if (bsdf->hasDelay()) opl += bsdf->sampleDelay(sampler.next1D());
-    if (arrivesBeforeWindow(s, opl, distance(hit.p, l.lightPosition))) return;
+    float beforeWindow = beforeWindowWeight(s, opl, distance(hit.p, l.lightPosition), sampler);
+    if (!(beforeWindow > 0.0f)) return;
     DirectionSample ds;
     Color3f Le = l.emitter->sampleDirection(hit.p, Point2f(l.uPick, 0.5f), ds);
     if (!(ds.pdf > 0.0f) || Le.isBlack() || opl + ds.dist >= recorder.horizon()) return;
@@ -659,7 +697,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     Connection c = connect(scene, hit, ds.d, ds.p, ds.dist, mediumAfter(hit, ds.d, medium), s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
     float weight = powerHeuristic(l.lightPdf, l.vertexPdf * l.passProbability, 0.0f);
-    recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * f * Le * c.transmittance * weight, l.emitter->pulse());
+    recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * f * Le * c.transmittance * (weight * beforeWindow),
+                       l.emitter->pulse());
   }
 
   /// Next-event estimation from a medium vertex whose distance along the
@@ -792,7 +831,9 @@ class TransientPathIntegrator : public TransientIntegrator {
   bool equiangular_;
   bool lightDirections_;
   bool timeGating_;
-  bool skipBeforeWindow_;
+  float beforeWindowRate_;
+  /// before_window_rate's default (docs/BENCHMARKS.md, transient_path sampling (b)).
+  static constexpr float DefaultBeforeWindowRate = 0.125f;
   bool discardDirectLight_ = false;
 };
 

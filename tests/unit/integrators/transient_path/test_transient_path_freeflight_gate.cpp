@@ -4,7 +4,9 @@
 // on them and weighted by their probability in homogeneous media, tracked up
 // to them in heterogeneous ones), and paths end at vertices that cannot. The
 // window's content must not change: gated and ungated estimators
-// (independent random numbers) agree within their combined noise on
+// (independent random numbers) agree within their combined noise, and so
+// does the light before the window, whose next-event connections gating
+// makes only with probability before_window_rate (default 1/8), on
 // randomised fog rooms, homogeneous (chromatic) and heterogeneous, with and
 // without observer time, and on scenes/cornell-box-fog.
 #include <gtest/gtest.h>
@@ -130,12 +132,13 @@ TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
 
 /// scenes/cornell-box-fog, gated or not, with `maxDepth`.
 std::shared_ptr<Scene> fogBox(bool gating, int maxDepth, bool skipBeforeWindow = false) {
-  return loadShippedSceneStrict("cornell-box-fog", {{"resolution", "8"},
-                                                    {"spp", "1"},
-                                                    {"frames", "false"},
-                                                    {"max_depth", std::to_string(maxDepth)},
-                                                    {"time_gating", gating ? "true" : "false"},
-                                                    {"skip_before_window", gating && skipBeforeWindow ? "true" : "false"}});
+  return loadShippedSceneStrict("cornell-box-fog",
+                                {{"resolution", "8"},
+                                 {"spp", "1"},
+                                 {"frames", "false"},
+                                 {"max_depth", std::to_string(maxDepth)},
+                                 {"time_gating", gating ? "true" : "false"},
+                                 {"before_window_rate", gating && skipBeforeWindow ? "0" : "0.125"}});
 }
 
 Ray fogBoxRay(PCG32& rng) {
@@ -182,11 +185,33 @@ TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowLeavesTheWindowUnc
                     false);
 }
 
-TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowNeedsTimeGating) {
-  EXPECT_THROW(loadSceneStrict(R"(<scene version="3.0.0">
-  <integrator type="transient_path"><boolean name="skip_before_window" value="true"/></integrator>
-</scene>)"),
-               std::exception);
+TEST(TransientPathFreeFlightGate, LightBeforeTheWindowSettingsAreChecked) {
+  // skip_before_window needs time gating, it and before_window_rate
+  // exclude each other, and the rate is a probability: the error names the
+  // parameter. (The rate alone is accepted without gating, where it does
+  // nothing, so that scenes can pass it through a <default>.)
+  auto errorOf = [](const std::string& params) {
+    return errorMessageOf([&] {
+      loadSceneStrict(
+          str(R"(<scene version="3.0.0"><integrator type="transient_path">)", params, R"(</integrator></scene>)"));
+    });
+  };
+  const std::string gating = R"(<boolean name="time_gating" value="true"/>)";
+  EXPECT_NE(
+      errorOf(R"(<boolean name="skip_before_window" value="true"/>)").find("skip_before_window needs time_gating"),
+      std::string::npos);
+  EXPECT_NE(
+      errorOf(gating +
+              R"(<boolean name="skip_before_window" value="true"/><float name="before_window_rate" value="0.5"/>)")
+          .find("not both"),
+      std::string::npos);
+  for (const char* bad : {"-0.1", "1.5", "nan"})
+    EXPECT_NE(
+        errorOf(gating + str(R"(<float name="before_window_rate" value=")", bad, R"("/>)")).find("must be in [0, 1]"),
+        std::string::npos)
+        << bad;
+  EXPECT_NO_THROW(loadSceneStrict(str(R"(<scene version="3.0.0"><integrator type="transient_path">)", gating,
+                                      R"(<float name="before_window_rate" value="1"/></integrator></scene>)")));
 }
 
 TEST(TransientPathFreeFlightGate, FogBoxLightBeforeALateWindowKeepsItsMean) {
