@@ -5,7 +5,9 @@
 // within the runs' spread plus a stated kernel-bias allowance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -51,6 +53,13 @@ inline Rendered render(const std::shared_ptr<Scene>& scene, const std::filesyste
       for (int c = 0; c < 3; ++c) nonFinite += !std::isfinite(r.steady.pixel(x, y)[c]);
   EXPECT_EQ(nonFinite, 0u) << "NaN or Inf reached the film of " << out;
   return r;
+}
+
+/// A positive integer from the environment, or `fallback`: the benchmark
+/// scripts under tools/bench run these tests longer through it.
+inline int environmentCount(const char* name, int fallback) {
+  const char* n = std::getenv(name);
+  return n ? std::max(1, std::atoi(n)) : fallback;
 }
 
 /// Per run (seeds 100, 101, ...), per time bin and one more entry for the

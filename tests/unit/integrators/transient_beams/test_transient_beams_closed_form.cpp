@@ -45,7 +45,12 @@ std::string beamsIntegrator(const MediaScene& m, int passes) {
       R"("/></integrator>)");
 }
 
+/// `passes` and `runs` unless the environment sets FEMTO_CLOSED_FORM_PASSES
+/// and FEMTO_CLOSED_FORM_RUNS (tools/bench/beams_bias.py measures the bias
+/// with many runs at several budgets).
 void expectClosedForm(const MediaScene& m, const std::string& name, int passes, int runs) {
+  passes = environmentCount("FEMTO_CLOSED_FORM_PASSES", passes);
+  runs = environmentCount("FEMTO_CLOSED_FORM_RUNS", runs);
   auto scene = loadSceneStrict(m.xml(beamsIntegrator(m, passes)));
   // 16 x 16 sub-rays per pixel: 4 x 4 read 0.58 % low beside the light.
   const std::vector<double> exact = m.closedFormImageSums(*scene, 5000, 16);

@@ -47,12 +47,6 @@ std::string integratorXml(const char* type, const MediaScene& m, int passes) {
              R"("/></integrator>)");
 }
 
-/// A positive integer from the environment, or `fallback`.
-int environmentCount(const char* name, int fallback) {
-  const char* n = std::getenv(name);
-  return n ? std::max(1, std::atoi(n)) : fallback;
-}
-
 /// Per coarse bin (4 fine bins each) and the window: the runs' means.
 std::vector<Mean> coarseSums(const std::vector<std::vector<double>>& perRun, int bins, const std::string& what) {
   const int per = 4, coarse = bins / per;
