@@ -34,9 +34,11 @@ CASES = [
 WINDOW = re.compile(r"^(\S+) window: beams (\S+) \+- (\S+), closed form (\S+)")
 
 
-def run_case(build, test, passes, runs):
+def run_case(build, test, passes, runs, alpha):
     env = dict(os.environ, FEMTO_CLOSED_FORM_PASSES=str(passes), FEMTO_CLOSED_FORM_RUNS=str(runs),
                FEMTO_PLUGIN_PATH=os.path.join(build, "bin", "plugins"))
+    if alpha is not None:
+        env["FEMTO_CLOSED_FORM_ALPHA"] = str(alpha)
     out = subprocess.run([os.path.join(build, "bin", "femto_unit_tests"),
                           f"--gtest_filter=TransientBeamsClosedForm.{test}"],
                          env=env, capture_output=True, text=True).stdout
@@ -52,12 +54,15 @@ def main():
     parser.add_argument("--passes", default="4,16,64")
     parser.add_argument("--pass-runs", type=int, default=192, help="runs x passes per row")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--alpha", type=float, default=None, help="the radius reduction (default: the integrator's)")
     args = parser.parse_args()
     budgets = [int(p) for p in args.passes.split(",")]
     load_start = os.getloadavg()
     header("Beams' bias against closed forms", "tools/bench/beams_bias.py",
-           f"tools/bench/beams_bias.py --passes {args.passes} --pass-runs {args.pass_runs}",
-           ["transient_beams at its defaults (derived radius, alpha 0.7), max_depth 2, 8×8 pixels; runs × passes "
+           f"tools/bench/beams_bias.py --passes {args.passes} --pass-runs {args.pass_runs}"
+           f"{'' if args.alpha is None else f' --alpha {args.alpha}'}",
+           [f"transient_beams at its defaults (derived radius, alpha {args.alpha or 'default'}), max_depth 2, "
+            "8×8 pixels; runs × passes "
             f"= {args.pass_runs} per row; window sum over the closed form of single scattering"])
     print("| scene | passes | runs | window / closed form − 1 | standard error | bias shown below 0.5 % | "
           "CI test's verdict |")
@@ -65,7 +70,7 @@ def main():
     for test, label, what in CASES:
         for passes in budgets:
             runs = max(2, args.pass_runs // passes)
-            est, se, ref, passed = run_case(args.build, test, passes, runs)
+            est, se, ref, passed = run_case(args.build, test, passes, runs, args.alpha)
             rel, rel_se = est / ref - 1.0, se / ref
             shown = "yes" if abs(rel) + 2.0 * rel_se < 0.005 else "no"
             print(f"| {what} | {passes} | {runs} | {100 * rel:+.2f} % | {100 * rel_se:.2f} % | {shown} | "

@@ -267,16 +267,17 @@ class TransientPathIntegrator : public TransientIntegrator {
       s.etaMax = scene.largestMediumEta();
     }
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
-      SurfaceInteraction si;
-      bool hit = scene.rayIntersect(s.ray, si);
+      // The surface's interaction only once the path reaches it (PreliminaryHit).
+      PreliminaryHit hitAhead;
+      bool hit = scene.rayIntersectPreliminary(s.ray, hitAhead);
       MediumSample ms;
       if (s.medium) {
-        beginMediumSegment(s, hit ? si.t : Infinity);
+        beginMediumSegment(s, hitAhead.t);
         if (s.equiangular) nextEventEquiangular(scene, s, sampler, recorder);
-        ms = sampleFreeFlight(s, hit ? si.t : Infinity, sampler);
+        ms = sampleFreeFlight(s, hitAhead.t, sampler);
         s.throughput *= ms.weight;
         if (s.throughput.isBlack()) return;
-        if (!ms.scattered) passSegment(s, hit ? si.t : Infinity, sampler);
+        if (!ms.scattered) passSegment(s, hitAhead.t, sampler);
       }
       if (ms.scattered) {
         if (!advance(s, ms.p) || s.opl >= horizon || pastGate(s)) return;
@@ -289,6 +290,8 @@ class TransientPathIntegrator : public TransientIntegrator {
           recordEnvironmentEmission(scene, s.ray, s.prev, s.opl, s.throughput, recorder);
         return;
       }
+      SurfaceInteraction si;
+      scene.computeInteraction(s.ray, hitAhead, si);
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
       if (pastGate(s)) return;

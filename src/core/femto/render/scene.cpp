@@ -102,6 +102,14 @@ Scene::~Scene() = default;
 
 bool Scene::rayIntersect(const Ray& ray, SurfaceInteraction& si) const { return accel_->intersect(ray, si); }
 
+bool Scene::rayIntersectPreliminary(const Ray& ray, PreliminaryHit& hit) const {
+  return accel_->intersectPreliminary(ray, hit);
+}
+
+void Scene::computeInteraction(const Ray& ray, const PreliminaryHit& hit, SurfaceInteraction& si) const {
+  accel_->computeInteraction(ray, hit, si);
+}
+
 float Scene::rayHitDistance(const Ray& ray) const { return accel_->hitDistance(ray); }
 
 bool Scene::rayTest(const Ray& ray) const { return accel_->occluded(ray); }

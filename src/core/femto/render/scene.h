@@ -25,6 +25,10 @@ class Scene : public Object {
 
   /// Nearest surface hit in (ray.tmin, ray.tmax); fills `si` (including wi and shape).
   bool rayIntersect(const Ray& ray, SurfaceInteraction& si) const;
+  /// The same hit without its interaction (PreliminaryHit), and the
+  /// interaction later, for the same ray: rayIntersect in two steps.
+  bool rayIntersectPreliminary(const Ray& ray, PreliminaryHit& hit) const;
+  void computeInteraction(const Ray& ray, const PreliminaryHit& hit, SurfaceInteraction& si) const;
   /// Distance to the nearest hit in (ray.tmin, ray.tmax), Infinity when none;
   /// computes no interaction (for callers that only need t, and benchmarks).
   float rayHitDistance(const Ray& ray) const;

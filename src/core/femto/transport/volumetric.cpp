@@ -18,7 +18,6 @@ const Medium* mediumAfter(const SurfaceInteraction& si, const Vec3f& d, const Me
 
 bool isPassThrough(const SurfaceInteraction& si) { return isPassThrough(si.bsdf()); }
 
-
 Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec3f& d, const Point3f& target,
                    float targetDistance, const Medium* medium, float surfaceEta, Sampler& sampler) {
   Connection result;
@@ -36,18 +35,22 @@ Connection connect(const Scene& scene, const SurfaceInteraction& from, const Vec
   Point3f start = from.p;
   Color3f tr(1.0f);
   for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
-    SurfaceInteraction si;
-    bool hit = scene.rayIntersect(ray, si);
+    PreliminaryHit ahead;
+    bool hit = scene.rayIntersectPreliminary(ray, ahead);
     float eta = medium ? medium->eta() : surfaceEta;
     // The shadow ray stops short of the target (ShadowEpsilon); the medium is crossed all the way.
-    float segment = hit ? si.t : (finite ? distance(ray.o, target) : Infinity);
+    float segment = hit ? ahead.t : (finite ? distance(ray.o, target) : Infinity);
     if (medium) tr *= medium->transmittance(ray, segment, sampler);
-    if (hit || finite) result.opl += double(eta) * distance(start, hit ? si.p : target);
     if (!hit) {
+      if (finite) result.opl += double(eta) * distance(start, target);
       result.transmittance = tr;
       return result;
     }
-    if (!isPassThrough(si) || tr.isBlack()) return result;
+    // Occluded: the surface's interaction is not needed (PreliminaryHit).
+    if (!isPassThrough(ahead.shape->bsdf()) || tr.isBlack()) return result;
+    SurfaceInteraction si;
+    scene.computeInteraction(ray, ahead, si);
+    result.opl += double(eta) * distance(start, si.p);
     medium = mediumAfter(si, ray.d, medium);
     start = si.p;
     ray = finite ? si.spawnRayTo(target) : si.spawnRay(ray.d);

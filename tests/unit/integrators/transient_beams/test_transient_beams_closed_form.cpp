@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include <transient_beams/light_leak.h>
@@ -38,11 +39,14 @@ using namespace femto::test;
 
 namespace {
 
+/// The integrator at its defaults; FEMTO_CLOSED_FORM_ALPHA (a benchmark's
+/// setting, tools/bench/beams_bias.py) sets its radius reduction alpha.
 std::string beamsIntegrator(const MediaScene& m, int passes) {
+  const char* alpha = std::getenv("FEMTO_CLOSED_FORM_ALPHA");
   return str(
       R"(<integrator type="transient_beams"><integer name="max_depth" value="2"/><integer name="passes" value=")",
-      passes, R"("/><boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false",
-      R"("/></integrator>)");
+      passes, R"("/><boolean name="observer_time" value=")", m.model.observerTime ? "true" : "false", R"("/>)",
+      alpha ? str(R"(<float name="alpha" value=")", alpha, R"("/>)") : std::string(), R"(</integrator>)");
 }
 
 /// `passes` and `runs` unless the environment sets FEMTO_CLOSED_FORM_PASSES

@@ -214,28 +214,39 @@ RTCRayHit traceNearest(RTCScene scene, const Ray& ray) {
 }  // namespace
 
 bool EmbreeAccel::intersect(const Ray& ray, SurfaceInteraction& si) const {
+  PreliminaryHit hit;
+  if (!intersectPreliminary(ray, hit)) return false;
+  computeInteraction(ray, hit, si);
+  return true;
+}
+
+bool EmbreeAccel::intersectPreliminary(const Ray& ray, PreliminaryHit& hit) const {
   RTCRayHit rh = traceNearest(impl_->scene, ray);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.geomId = rh.hit.geomID;
+  hit.instanceId = rh.hit.instID[0];
+  hit.primIndex = rh.hit.primID;
+  hit.uv = Point2f(rh.hit.u, rh.hit.v);
+  // Embree reports an instance as instID and the group's own geometry as geomID.
+  hit.shape = hit.instanceId == RTC_INVALID_GEOMETRY_ID ? impl_->byGeomId[hit.geomId].shape
+                                                        : (*impl_->byGeomId[hit.instanceId].groupShapes)[hit.geomId];
+  return true;
+}
 
-  float t = rh.ray.tfar;
-  Point2f uv(rh.hit.u, rh.hit.v);
-  const Shape* shape;
-  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
-    shape = impl_->byGeomId[rh.hit.geomID].shape;
-    shape->computeInteraction(ray, t, rh.hit.primID, uv, si);
+void EmbreeAccel::computeInteraction(const Ray& ray, const PreliminaryHit& hit, SurfaceInteraction& si) const {
+  if (hit.instanceId == RTC_INVALID_GEOMETRY_ID) {
+    hit.shape->computeInteraction(ray, hit.t, hit.primIndex, hit.uv, si);
   } else {
-    // Embree reports the instance as instID and the group's own geometry as
-    // geomID; t is shared because the ray direction is not renormalised.
-    const TopLevelEntry& entry = impl_->byGeomId[rh.hit.instID[0]];
-    shape = (*entry.groupShapes)[rh.hit.geomID];
-    shape->computeInteraction(entry.instance->toLocal().ray(ray), t, rh.hit.primID, uv, si);
+    // t is shared with the instance's local ray: its direction is not renormalised.
+    const TopLevelEntry& entry = impl_->byGeomId[hit.instanceId];
+    hit.shape->computeInteraction(entry.instance->toLocal().ray(ray), hit.t, hit.primIndex, hit.uv, si);
     entry.instance->interactionToWorld(si);
   }
-  si.t = t;
-  si.shape = shape;
-  si.primIndex = rh.hit.primID;
+  si.t = hit.t;
+  si.shape = hit.shape;
+  si.primIndex = hit.primIndex;
   si.wi = si.toLocal(normalize(-ray.d));
-  return true;
 }
 
 float EmbreeAccel::hitDistance(const Ray& ray) const {

@@ -29,6 +29,10 @@ class EmbreeAccel {
   /// Nearest hit in (ray.tmin, ray.tmax); fills t, shape, primIndex and
   /// everything computeInteraction provides, plus wi.
   bool intersect(const Ray& ray, SurfaceInteraction& si) const;
+  /// Nearest hit in (ray.tmin, ray.tmax) without its interaction.
+  bool intersectPreliminary(const Ray& ray, PreliminaryHit& hit) const;
+  /// The interaction of `hit`, found for the same `ray`: what intersect fills.
+  void computeInteraction(const Ray& ray, const PreliminaryHit& hit, SurfaceInteraction& si) const;
   /// Nearest hit distance, Infinity when none (no interaction computed).
   float hitDistance(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
