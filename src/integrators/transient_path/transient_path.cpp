@@ -10,12 +10,16 @@
 // connected through media with their transmittance (ratio tracking in
 // heterogeneous media) and combined with phase/BSDF sampling by multiple
 // importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Lights at a
-// point (point, spot, projector) seen from a homogeneous medium get a second
-// medium vertex per segment: its distance is sampled equiangularly toward the
-// light (transport/equiangular.h: density ~ 1/r^2) over the whole segment, and
-// MIS-weighted against the free-flight vertex's next-event estimate. Without
-// it, next-event estimates from free-flight vertices near a point light have
-// infinite variance (fireflies ~ 1/r^2).
+// point (point, spot, projector) seen from a medium get a second medium
+// vertex per segment: its distance is sampled equiangularly toward the light
+// (transport/equiangular.h: density ~ 1/r^2) over the whole segment, and
+// MIS-weighted against the free-flight vertex's next-event estimate (in a
+// heterogeneous medium, whose free flights have no closed-form density, the
+// equiangular vertex takes every distance it can sample and the free-flight
+// vertex the rest: freeFlightVertexWeight; its transmittance to the vertex
+// is ratio tracking's estimate). Without it, next-event estimates from
+// free-flight vertices near a point light have infinite variance
+// (fireflies ~ 1/r^2).
 //
 // Light-directed vertices (light_directions = true): that still leaves rays
 // that pass close to the light. The single-scattered radiance arriving along
@@ -174,7 +178,7 @@ struct PathState : OpticalPath {
   // The last scattering vertex, for weighting emission that phase/BSDF sampling
   // finds (a camera ray counts as delta: no other strategy finds what it sees).
   ScatterOrigin prev;
-  // The homogeneous-medium segment `ray` is crossing, when next-event
+  // The medium segment `ray` is crossing, when next-event
   // estimation samples distances along it toward point lights: its length
   // (hit distance or Infinity).
   bool equiangular = false;
@@ -365,9 +369,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       // (lightDirectedSurface): the two share the light's contribution.
       weight = powerHeuristic(1.0f, lightDirectedRatio(s, lightPosition), 0.0f);
     } else if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
-      float equiangular = pdfEquiangular(equiangularToward(s, lightPosition), segmentT);
-      weight =
-          powerHeuristic(freeFlightPdf(s, segmentT), equiangular, equiangular * lightDirectedRatio(s, lightPosition));
+      weight = freeFlightVertexWeight(s, lightPosition, segmentT);
     }
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl,
                        s.throughput * f * emitterWeight * c.transmittance * (weight * beforeWindow),
@@ -375,10 +377,10 @@ class TransientPathIntegrator : public TransientIntegrator {
   }
 
   /// Start crossing a medium segment of length `tMax` along s.ray: decide
-  /// whether next-event estimation also samples it equiangularly (homogeneous
-  /// medium, and a vertex on it may still connect to a light: depth).
+  /// whether next-event estimation also samples it equiangularly (when a
+  /// vertex on it may still connect to a light: depth).
   void beginMediumSegment(PathState& s, float tMax) const {
-    s.equiangular = equiangular_ && s.medium->isHomogeneous() && s.depth + 1 != depth_.maxDepth;
+    s.equiangular = equiangular_ && s.depth + 1 != depth_.maxDepth;
     s.segmentMax = tMax;
     s.equiangularCache.valid = false;
     s.segmentStartOpl = segmentCounts(observerTime_, s.cameraSegment) ? s.opl : -Infinity;
@@ -737,9 +739,28 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition));
+    float weight = s.medium->isHomogeneous()
+                       ? powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition))
+                       : 1.0f;  // heterogeneous: the distances it samples are its own (freeFlightVertexWeight)
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
+  }
+
+  /// MIS weight of the free-flight vertex at distance t on the current
+  /// segment for its next-event estimate toward a point light at `c`, against
+  /// the segment's equiangular vertex (and the light-directed one). In
+  /// homogeneous media the power heuristic over their densities. A
+  /// heterogeneous medium's free flights (tracking) have no closed-form
+  /// density, so there the segment is split instead: the equiangular vertex
+  /// takes every distance it can sample (its weight is 1) and the free-flight
+  /// vertex the others (weight 1 where p_eq(t) = 0, else 0), a partition of
+  /// unity (Veach 1997, sec. 9.2.2, the cutoff heuristic at cutoff 0), so the
+  /// sum stays unbiased; light-directed vertices stop at heterogeneous media
+  /// (nextEventLightDirected), so they take no part.
+  float freeFlightVertexWeight(const PathState& s, const Point3f& c, float t) const {
+    float equiangular = pdfEquiangular(equiangularToward(s, c), t);
+    if (!s.medium->isHomogeneous()) return equiangular > 0.0f ? 0.0f : 1.0f;
+    return powerHeuristic(freeFlightPdf(s, t), equiangular, equiangular * lightDirectedRatio(s, c));
   }
 
   bool scatterInMedium(const Scene& scene, PathState& s, const Point3f& p, float t, Sampler& sampler,

@@ -32,9 +32,11 @@ namespace {
 /// A fog cube (index-matched, medium `mediumXml` with id "fog") holding a
 /// diffuse floor and a point light, seen from outside at z = 4.
 std::shared_ptr<Scene> fogRoom(bool gating, bool observerTime, const std::string& mediumXml, const Point3f& light,
-                               bool skipBeforeWindow = false) {
+                               bool skipBeforeWindow = false, bool equiangular = true) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path"><integer name="max_depth" value="8"/>
+    <boolean name="equiangular" value=")",
+                             equiangular ? "true" : "false", R"("/>
     <boolean name="skip_before_window" value=")",
                              gating && skipBeforeWindow ? "true" : "false", R"("/>
     <boolean name="observer_time" value=")",
@@ -60,13 +62,15 @@ Ray roomRay(PCG32& rng) {
   return Ray(Point3f(0.0f, 0.0f, 4.0f), normalize(target - Point3f(0.0f, 0.0f, 4.0f)));
 }
 
-/// Gated and ungated estimates of `grid`'s window agree: its total and its
-/// last bin (where truncation cuts most), within 5 combined standard errors;
-/// and so does the light before the window (the film's _before), unless
-/// `before` is false (skip_before_window).
+/// Estimates of `grid`'s window with a setting on (gating, unless a test
+/// says otherwise) and off agree: its total and its last bin (where
+/// truncation cuts most), within 5 combined standard errors; and so does the
+/// light before the window (the film's _before), unless `before` is false
+/// (skip_before_window).
 template <typename SceneFn, typename RayFn>
-void expectGatedAgrees(SceneFn&& scene, const TimeGrid& grid, int n, uint64_t seed, RayFn&& rays, bool before = true) {
-  WindowEstimate gated = estimateWindow(*scene(true), grid, n, seed, rays);
+void expectOnAndOffAgree(SceneFn&& scene, const TimeGrid& grid, int n, uint64_t seed, RayFn&& rays,
+                         bool before = true) {
+  WindowEstimate gated = estimateWindow(*scene(true), grid, n, seed, rays);  // "gated": the setting on
   WindowEstimate ungated = estimateWindow(*scene(false), grid, n, seed + 1000, rays);
   ASSERT_GT(ungated.total.mean(), 0.0) << "the window holds light: the test compares something";
   double se = std::hypot(gated.total.standardError(), ungated.total.standardError());
@@ -102,8 +106,8 @@ TEST(TransientPathFreeFlightGate, HomogeneousRoomsAgreeWithUngated) {
                      observerTime, " window from ", start));
     std::string medium = str(R"(<medium id="fog" type="homogeneous"><rgb name="sigma_t" value=")", sigmaT.r, ", ",
                              sigmaT.g, ", ", sigmaT.b, R"("/><float name="albedo" value=")", albedo, R"("/></medium>)");
-    expectGatedAgrees([&](bool gating) { return fogRoom(gating, observerTime, medium, light); },
-                      TimeGrid{start, 0.25, 4}, 50000, 300 + k, roomRay);
+    expectOnAndOffAgree([&](bool gating) { return fogRoom(gating, observerTime, medium, light); },
+                        TimeGrid{start, 0.25, 4}, 50000, 300 + k, roomRay);
   }
 }
 
@@ -124,8 +128,36 @@ TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
                              (dir / "density.vol").string(), R"("/></volume>
     <float name="scale" value=")",
                              scale, R"("/><rgb name="albedo" value="0.9, 0.8, 0.7"/></medium>)");
-    expectGatedAgrees([&](bool gating) { return fogRoom(gating, observerTime, medium, light); },
-                      TimeGrid{start, 0.25, 4}, 40000, 500 + k, roomRay);
+    expectOnAndOffAgree([&](bool gating) { return fogRoom(gating, observerTime, medium, light); },
+                        TimeGrid{start, 0.25, 4}, 40000, 500 + k, roomRay);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(TransientPathFreeFlightGate, HeterogeneousEquiangularVerticesAgreeWithFreeFlights) {
+  // Equiangular next-event vertices in a heterogeneous medium (ratio
+  // tracking's transmittance to the vertex; the segment split between them
+  // and the free-flight vertices, freeFlightVertexWeight) against free
+  // flights alone (equiangular = false): independent estimators, with and
+  // without gating and observer time, the light in the fog.
+  auto dir = scratchDir("freeflight-gate-grid-equiangular");
+  writeDensityGrid(dir / "density.vol", 6, 1.0f);
+  PCG32 scenes(93, 5);
+  for (int k = 0; k < 3; ++k) {
+    float scale = 0.4f + 0.8f * scenes.nextFloat();
+    Point3f light(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f);
+    bool observerTime = k != 1, gating = k != 2;
+    double start = (observerTime ? 4.5 : 1.5) + 1.5 * scenes.nextFloat();
+    SCOPED_TRACE(str("scene ", k, ": scale ", scale, " light ", light, " observer time ", observerTime, " gating ",
+                     gating, " window from ", start, " (\"gated\" = equiangular)"));
+    std::string medium = str(R"(<medium id="fog" type="heterogeneous">
+    <volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
+                             (dir / "density.vol").string(), R"("/></volume>
+    <float name="scale" value=")",
+                             scale, R"("/><rgb name="albedo" value="0.9, 0.8, 0.7"/></medium>)");
+    expectOnAndOffAgree(
+        [&](bool equiangular) { return fogRoom(gating, observerTime, medium, light, false, equiangular); },
+        TimeGrid{start, 0.25, 4}, 40000, 600 + k, roomRay);
   }
   std::filesystem::remove_all(dir);
 }
@@ -152,14 +184,14 @@ TEST(TransientPathFreeFlightGate, FogBoxLongPathsAgreeWithUngated) {
   // truncated. (Its last 10 %, [12.22, 13.24), is too heavy-tailed to
   // separate a 40 % bias from noise in a few seconds: the benchmark,
   // tools/bench/path_sampling_bench.py, compares it with the full render.)
-  expectGatedAgrees([](bool gating) { return fogBox(gating, 8); }, TimeGrid{7.0, 0.25, 4}, 40000, 700, fogBoxRay);
+  expectOnAndOffAgree([](bool gating) { return fogBox(gating, 8); }, TimeGrid{7.0, 0.25, 4}, 40000, 700, fogBoxRay);
 }
 
 TEST(TransientPathFreeFlightGate, FogBoxShortPathsAgreeWithUngated) {
   // Paths of up to 3 segments in a window that ends while most of them are
   // still in the fog: most free flights are truncated, and the estimates
   // have light tails.
-  expectGatedAgrees([](bool gating) { return fogBox(gating, 3); }, TimeGrid{4.0, 0.25, 6}, 80000, 800, fogBoxRay);
+  expectOnAndOffAgree([](bool gating) { return fogBox(gating, 3); }, TimeGrid{4.0, 0.25, 6}, 80000, 800, fogBoxRay);
 }
 
 TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowLeavesTheWindowUnchanged) {
@@ -178,11 +210,11 @@ TEST(TransientPathFreeFlightGate, SkippingLightBeforeTheWindowLeavesTheWindowUnc
     std::string medium =
         str(R"(<medium id="fog" type="homogeneous"><float name="sigma_t" value=")", sigmaT,
             R"("/><float name="albedo" value="0.85"/><float name="eta" value=")", eta, R"("/></medium>)");
-    expectGatedAgrees([&](bool gating) { return fogRoom(gating, observerTime, medium, light, true); },
-                      TimeGrid{start, 0.25, 4}, 40000, 900 + k, roomRay, false);
+    expectOnAndOffAgree([&](bool gating) { return fogRoom(gating, observerTime, medium, light, true); },
+                        TimeGrid{start, 0.25, 4}, 40000, 900 + k, roomRay, false);
   }
-  expectGatedAgrees([](bool gating) { return fogBox(gating, 8, true); }, TimeGrid{7.0, 0.25, 4}, 40000, 950, fogBoxRay,
-                    false);
+  expectOnAndOffAgree([](bool gating) { return fogBox(gating, 8, true); }, TimeGrid{7.0, 0.25, 4}, 40000, 950,
+                      fogBoxRay, false);
 }
 
 TEST(TransientPathFreeFlightGate, LightBeforeTheWindowSettingsAreChecked) {
@@ -218,5 +250,5 @@ TEST(TransientPathFreeFlightGate, FogBoxLightBeforeALateWindowKeepsItsMean) {
   // A window late enough that the first vertices run no light-directed
   // vertex (the path's own MIS weights must know): the light before it
   // (_before) keeps its mean.
-  expectGatedAgrees([](bool gating) { return fogBox(gating, 3); }, TimeGrid{10.0, 0.25, 4}, 60000, 1000, fogBoxRay);
+  expectOnAndOffAgree([](bool gating) { return fogBox(gating, 3); }, TimeGrid{10.0, 0.25, 4}, 60000, 1000, fogBoxRay);
 }
