@@ -111,25 +111,38 @@ TEST(TransientPathFreeFlightGate, HomogeneousRoomsAgreeWithUngated) {
   }
 }
 
+/// A randomised room of heterogeneous fog with id "fog" (the density grid
+/// `grid` times a random scale, a chromatic albedo), its light and a window
+/// start that the paths reach with or without observer time.
+struct GridFogRoom {
+  float scale;
+  Point3f light;
+  double start;
+  std::string medium;
+  GridFogRoom(PCG32& rng, const std::filesystem::path& grid, bool observerTime) {
+    scale = 0.4f + 0.8f * rng.nextFloat();
+    light = Point3f(rng.nextFloat() - 0.5f, 0.2f + 0.6f * rng.nextFloat(), rng.nextFloat() - 0.5f);
+    start = (observerTime ? 4.5 : 1.5) + 1.5 * rng.nextFloat();
+    medium = str(R"(<medium id="fog" type="heterogeneous">
+    <volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
+                 grid.string(), R"("/></volume><float name="scale" value=")", scale,
+                 R"("/><rgb name="albedo" value="0.9, 0.8, 0.7"/></medium>)");
+  }
+  std::string describe() const { return str("scale ", scale, " light ", light, " window from ", start); }
+};
+
 TEST(TransientPathFreeFlightGate, HeterogeneousRoomsAgreeWithUngated) {
-  // Delta (spectral) tracking up to the reach only; paths that pass it end.
+  // Spectral tracking conditioned on its first tentative collision before
+  // the reach (Medium::sampleDistanceBefore); paths that track past it end.
   auto dir = scratchDir("freeflight-gate-grid");
   writeDensityGrid(dir / "density.vol", 6, 1.0f);
   PCG32 scenes(91, 5);
   for (int k = 0; k < 2; ++k) {
-    float scale = 0.4f + 0.8f * scenes.nextFloat();
-    Point3f light(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f);
     bool observerTime = k % 2 == 0;
-    double start = (observerTime ? 4.5 : 1.5) + 1.5 * scenes.nextFloat();
-    SCOPED_TRACE(
-        str("scene ", k, ": scale ", scale, " light ", light, " observer time ", observerTime, " window from ", start));
-    std::string medium = str(R"(<medium id="fog" type="heterogeneous">
-    <volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
-                             (dir / "density.vol").string(), R"("/></volume>
-    <float name="scale" value=")",
-                             scale, R"("/><rgb name="albedo" value="0.9, 0.8, 0.7"/></medium>)");
-    expectOnAndOffAgree([&](bool gating) { return fogRoom(gating, observerTime, medium, light); },
-                        TimeGrid{start, 0.25, 4}, 40000, 500 + k, roomRay);
+    GridFogRoom room(scenes, dir / "density.vol", observerTime);
+    SCOPED_TRACE(str("scene ", k, ": ", room.describe(), " observer time ", observerTime));
+    expectOnAndOffAgree([&](bool gating) { return fogRoom(gating, observerTime, room.medium, room.light); },
+                        TimeGrid{room.start, 0.25, 4}, 40000, 500 + k, roomRay);
   }
   std::filesystem::remove_all(dir);
 }
@@ -144,20 +157,13 @@ TEST(TransientPathFreeFlightGate, HeterogeneousEquiangularVerticesAgreeWithFreeF
   writeDensityGrid(dir / "density.vol", 6, 1.0f);
   PCG32 scenes(93, 5);
   for (int k = 0; k < 3; ++k) {
-    float scale = 0.4f + 0.8f * scenes.nextFloat();
-    Point3f light(scenes.nextFloat() - 0.5f, 0.2f + 0.6f * scenes.nextFloat(), scenes.nextFloat() - 0.5f);
     bool observerTime = k != 1, gating = k != 2;
-    double start = (observerTime ? 4.5 : 1.5) + 1.5 * scenes.nextFloat();
-    SCOPED_TRACE(str("scene ", k, ": scale ", scale, " light ", light, " observer time ", observerTime, " gating ",
-                     gating, " window from ", start, " (\"gated\" = equiangular)"));
-    std::string medium = str(R"(<medium id="fog" type="heterogeneous">
-    <volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
-                             (dir / "density.vol").string(), R"("/></volume>
-    <float name="scale" value=")",
-                             scale, R"("/><rgb name="albedo" value="0.9, 0.8, 0.7"/></medium>)");
+    GridFogRoom room(scenes, dir / "density.vol", observerTime);
+    SCOPED_TRACE(str("scene ", k, ": ", room.describe(), " observer time ", observerTime, " gating ", gating,
+                     " (\"gated\" = equiangular)"));
     expectOnAndOffAgree(
-        [&](bool equiangular) { return fogRoom(gating, observerTime, medium, light, false, equiangular); },
-        TimeGrid{start, 0.25, 4}, 40000, 600 + k, roomRay);
+        [&](bool equiangular) { return fogRoom(gating, observerTime, room.medium, room.light, false, equiangular); },
+        TimeGrid{room.start, 0.25, 4}, 40000, 600 + k, roomRay);
   }
   std::filesystem::remove_all(dir);
 }
