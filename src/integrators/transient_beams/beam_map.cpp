@@ -26,6 +26,7 @@
 #include <femto/base/thread_edges.h>
 #include <femto/math/bbox.h>
 #include <transient_beams/boundary_extension.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 
@@ -373,7 +374,8 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-void BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks) const {
+size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
+                              Cull cull) const {
   out.clear();
   if (marks.mark.size() != beams_.size() || marks.query == std::numeric_limits<uint32_t>::max()) {
     marks.mark.assign(beams_.size(), 0);
@@ -381,12 +383,18 @@ void BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>&
   }
   const uint32_t stamp = ++marks.query;
   uint32_t* mark = marks.mark.data();
+  const Beam* beams = beams_.data();
+  // The padded radius of the line test (beam_map.h, Cull::Lines).
+  const float padded = radius_ * 1.001f, r2 = padded * padded;
+  const bool lines = cull == Cull::Lines;
+  size_t boxed = 0;
   traverse(segment, [&](uint32_t beam) {
-    if (mark[beam] != stamp) {
-      mark[beam] = stamp;
-      out.push_back(beam);
-    }
+    if (mark[beam] == stamp) return;
+    mark[beam] = stamp;  // a beam's other pieces are skipped, whether it passes the line test or not
+    ++boxed;
+    if (!lines || !linesPassApart(pairLines(segment, beams[beam]), r2)) out.push_back(beam);
   });
+  return boxed;
 }
 
 }  // namespace femto::beams

@@ -55,12 +55,28 @@ class BeamMap {
     std::vector<uint32_t> mark;  // the query that last reported beam i
     uint32_t query = 0;
   };
-  /// The same beams as query(), each once, but in traversal order (fixed by
-  /// the map and the segment, so deterministic), deduplicated with `marks`
-  /// instead of a sort: O(candidates) instead of O(candidates log candidates),
-  /// which matters when a segment meets hundreds of beams (the camera side's
-  /// hot loop). `marks` is sized on first use.
-  void queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks) const;
+  /// What queryUnsorted reports of the beams whose piece boxes a segment crosses.
+  enum class Cull {
+    /// All of them: query()'s beams.
+    Boxes,
+    /// Only those whose axis the segment's line passes within the radius of
+    /// (or runs parallel to): rayBeamIntersect's first test (ray_beam.h,
+    /// linesPassApart), with a radius 0.1 % larger so that rounding can never
+    /// drop a beam it would keep. Done here, once per beam, instead of after
+    /// the query: the same work, but the beams returned are those near the
+    /// segment's line, not all those near a box (for a long beam at a small
+    /// radius the box of a piece is mostly empty space).
+    Lines,
+  };
+  /// The same beams as query() (or, with Cull::Lines, those of them near the
+  /// segment's line), each once, but in traversal order (fixed by the map and
+  /// the segment, so deterministic), deduplicated with `marks` instead of a
+  /// sort: O(candidates) instead of O(candidates log candidates), which
+  /// matters when a segment meets hundreds of beams (the camera side's hot
+  /// loop). `marks` is sized on first use. Returns how many distinct beams'
+  /// piece boxes the segment crossed (query()'s count; statistics).
+  size_t queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
+                       Cull cull = Cull::Boxes) const;
 
   const std::vector<Beam>& beams() const { return beams_; }
   float radius() const { return radius_; }

@@ -50,6 +50,8 @@
 // and non-finite input. On true, every field of the hit is finite.
 #include <transient_beams/beam.h>
 
+#include <femto/math/vector.h>
+
 namespace femto::beams {
 
 /// Which kernel weights a pair (docs/photon-beams.md, "Kernels").
@@ -75,6 +77,49 @@ struct RayBeamHit {
   /// The overlap on the camera segment: 0 <= tRayBegin < tRayEnd <= tMax.
   float tRayBegin = 0.0f, tRayEnd = 0.0f;
 };
+
+/// sin^2(theta) below this (theta < 1e-5 rad, about the rounding of unit float
+/// vectors): the lines are parallel and the closest-approach quadratic
+/// degenerates (its leading coefficient is rounding noise). The distance to
+/// the axis then varies by < 1e-5 per unit length; rayBeamIntersect takes it
+/// at the middle of the slab-clipped segment.
+inline constexpr float RayBeamParallelSin2 = 1e-10f;
+
+/// A camera segment's line against a beam's, as rayBeamIntersect sees them
+/// first (w = ray.d, v = beam.direction, b = beam.origin).
+struct PairLines {
+  Vec3f delta;     // ray.o - b
+  float cosTheta;  // w.v
+  float s0;        // projection of ray.o on the beam: s(t) = s0 + t cos(theta)
+  Vec3f wPerp;     // w - v cos(theta): the camera direction across the beam
+  Vec3f dPerp;     // delta - v s0: ray.o's offset from the beam's axis
+  float sin2;      // |wPerp|^2 = sin^2(theta)
+  /// |dPerp x wPerp|^2 = sin^2(theta) d^2, d the distance between the lines:
+  /// the discriminant / 4 of the cylinder quadratic is sin2 r^2 - offset2
+  /// (Lagrange's identity), free of the cancellation of its large terms.
+  float offset2;
+};
+
+inline PairLines pairLines(const CameraSegment& segment, const Beam& beam) {
+  PairLines p;
+  const Vec3f &w = segment.ray.d, &v = beam.direction;
+  p.delta = segment.ray.o - beam.origin;
+  p.cosTheta = dot(w, v);
+  p.s0 = dot(p.delta, v);
+  p.wPerp = w - v * p.cosTheta;
+  p.dPerp = p.delta - v * p.s0;
+  p.sin2 = dot(p.wPerp, p.wPerp);
+  const Vec3f m = cross(p.dPerp, p.wPerp);
+  p.offset2 = dot(m, m);
+  return p;
+}
+
+/// True when the lines are not parallel and pass at distance >= sqrt(r2):
+/// then the segment misses the beam's kernel region wherever its ends are,
+/// and rayBeamIntersect (with r^2 <= r2) returns false.
+inline bool linesPassApart(const PairLines& p, float r2) {
+  return p.sin2 > RayBeamParallelSin2 && !(p.sin2 * r2 - p.offset2 > 0.0f);
+}
 
 /// Does `segment` pass within `radius` of `beam` (through its kernel region,
 /// with an overlap of positive length)? On true, `hit` holds the estimate's

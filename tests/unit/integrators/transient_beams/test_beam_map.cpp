@@ -15,6 +15,7 @@
 #include <femto/base/error.h>
 #include <femto/math/pcg32.h>
 #include <transient_beams/beam_map.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 namespace {
@@ -286,6 +287,50 @@ TEST(BeamMap, UnsortedQueryFindsTheSameBeamsOnce) {
     total += sorted.size();
   }
   EXPECT_GT(total, 300u);  // the queries do find beams
+}
+
+// Cull::Lines (the camera side's query) keeps exactly the box candidates
+// whose axis the segment's line passes within the (padded) radius: every pair
+// rayBeamIntersect accepts, and every beam within the radius by the exact
+// distance, stays; on long oblique beams at a small radius (issue 14's box:
+// boxes of long pieces are mostly empty space) most box candidates go, so
+// at least one candidate in two is a pair hit. Cull::Boxes alone gives one
+// in 29 here: the bound fails if the line test stops culling.
+TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
+  PCG32 rng(31, 7);
+  std::vector<Beam> beams;
+  for (int i = 0; i < 3000; ++i) {
+    Vec3f d = randomDirection(rng);
+    beams.push_back(makeBeam(Point3f(0.5f) - d * (0.5f + rng.nextFloat()), d, 1.0f + 2.0f * rng.nextFloat()));
+  }
+  const float radius = 0.005f;
+  BeamMap map(beams, radius);
+  BeamMap::VisitMarks marks;
+  std::vector<uint32_t> boxes, lines, sorted;
+  size_t boxCount = 0, lineCount = 0, pairs = 0;
+  for (int i = 0; i < 300; ++i) {
+    CameraSegment seg = randomSegment(rng);
+    map.query(seg, sorted);
+    const size_t boxed = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines);
+    map.queryUnsorted(seg, boxes, marks, BeamMap::Cull::Boxes);
+    EXPECT_EQ(boxed, sorted.size()) << "query " << i;
+    std::sort(lines.begin(), lines.end());
+    EXPECT_TRUE(std::includes(sorted.begin(), sorted.end(), lines.begin(), lines.end())) << "query " << i;
+    for (uint32_t b : sorted) {
+      RayBeamHit hit;
+      const bool kept = std::binary_search(lines.begin(), lines.end(), b);
+      if (rayBeamIntersect(seg, beams[b], radius, hit)) {
+        ++pairs;
+        EXPECT_TRUE(kept) << "beam " << b << " dropped, query " << i;
+      }
+      if (distance(seg, beams[b]) < 0.999 * radius) EXPECT_TRUE(kept) << "beam " << b << " within the radius dropped";
+    }
+    boxCount += sorted.size();
+    lineCount += lines.size();
+  }
+  ASSERT_GT(pairs, 100u);  // the bounds below mean something
+  EXPECT_LT(double(lineCount), 2.0 * double(pairs)) << lineCount << " candidates for " << pairs << " pairs";
+  EXPECT_GT(double(boxCount), 4.0 * double(pairs)) << "the boxes alone are tight here: the bound above tells nothing";
 }
 
 TEST(BeamMap, RejectsBadInput) {
