@@ -149,7 +149,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const std::vector<Beam>& beams = maps_.beams.beams();
   // Beams: the map also drops those whose axis the segment's line passes
   // beyond the radius, rayBeamIntersect's first test (beam_map.h, Cull::Lines).
-  stats_.boxCandidates +=
+  stats_.piecesCrossed +=
       maps_.beams.queryUnsorted(segment, scratch_, marks_, points ? BeamMap::Cull::Boxes : BeamMap::Cull::Lines);
   ++stats_.segments;
   stats_.candidates += scratch_.size();
