@@ -205,12 +205,15 @@ void checkBeam(const Beam& beam, size_t index) {
 // about 3.5 r on a diagonal beam when queries are many (kappa -> 0: the
 // pieces of a few radii the map has always cut), longer where few segments
 // pass, unbounded on axis-parallel beams (S2 = 0: their box is tight).
-// Cb / Cq (PieceBuildCost) measured with perf on the media suite's box with
-// light outside (binned SAH build ~250 ns per piece at 2e5 pieces; ~11 ns per
-// box crossing: the leaf's slab test, the report, the line test): the rule
-// then picks ~4 pieces per beam there, ~10 in the large medium, ~2 in the
-// thick one, the optima of a sweep over the piece cap (docs/BENCHMARKS.md).
-constexpr double PieceBuildCost = 22.0;
+// Cb / Cq (PieceBuildCost): perf on the media suite's box with light outside
+// gives ~250 ns per piece built (binned SAH, 2e5 pieces) and ~11 ns per box
+// crossing (slab test, report, line test) there, a ratio of 22; where beams
+// are many (the thick medium: 148k a pass) a crossing costs more, its beam
+// and visit mark being cache misses. 10 is fitted on paired timings of the
+// suite (1 thread, 4 passes): against 22 the thick medium 5 % faster, the box
+// 2 % slower, the large medium and the fog box within noise; ~7 pieces per
+// beam on the box, ~16 in the large medium, ~3 in the thick one.
+constexpr double PieceBuildCost = 10.0;
 
 // How many pieces each beam is cut into: ceil(extended length / L_i), L_i
 // the fixed pieceLengthInRadii radii (crossingDensity 0) or L* above,
@@ -408,8 +411,9 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
 }
 
 size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                              Cull cull) const {
+                              Cull cull, std::vector<PairLines>* lines) const {
   out.clear();
+  if (lines) lines->clear();
   if (marks.mark.size() != beams_.size() || marks.query == std::numeric_limits<uint32_t>::max()) {
     marks.mark.assign(beams_.size(), 0);
     marks.query = 0;
@@ -418,7 +422,7 @@ size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t
   uint32_t* mark = marks.mark.data();
   // The padded radius of the line test (beam_map.h, Cull::Lines).
   const float padded = radius_ * 1.001f, r2 = padded * padded;
-  const bool lines = cull == Cull::Lines;
+  const bool lineCull = cull == Cull::Lines;
   size_t crossed = 0;
   const Beam* beams = beams_.data();
   traverse(segment, [&](const Piece& piece) {
@@ -429,7 +433,14 @@ size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t
     // beam, made the thick medium of the media suite 5 % slower: pieces of
     // 52 bytes instead of 28.)
     mark[piece.beam] = stamp;
-    if (!lines || !linesPassApart(pairLines(segment, beams[piece.beam]), r2)) out.push_back(piece.beam);
+    if (!lineCull) {
+      out.push_back(piece.beam);
+      return;
+    }
+    const PairLines p = pairLines(segment, beams[piece.beam]);
+    if (linesPassApart(p, r2)) return;
+    out.push_back(piece.beam);
+    if (lines) lines->push_back(p);
   });
   return crossed;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <transient_beams/beam.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 
@@ -83,10 +84,12 @@ class BeamMap {
   /// the segment, so deterministic), deduplicated with `marks` instead of a
   /// sort: O(candidates) instead of O(candidates log candidates), which
   /// matters when a segment meets hundreds of beams (the camera side's hot
-  /// loop). `marks` is sized on first use. Returns how many piece boxes the
+  /// loop). `marks` is sized on first use. With Cull::Lines and `lines`,
+  /// lines[k] receives pairLines(segment, beams()[out[k]]) (rayBeamIntersect
+  /// then need not compute them again). Returns how many piece boxes the
   /// segment crossed (the map's work; statistics).
   size_t queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                       Cull cull = Cull::Boxes) const;
+                       Cull cull = Cull::Boxes, std::vector<PairLines>* lines = nullptr) const;
 
   /// BeamMapOptions::crossingDensity for `beams` at `radius` from sample
   /// segments standing for the queries, each for `weight` real ones (probe

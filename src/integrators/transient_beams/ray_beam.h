@@ -127,5 +127,9 @@ inline bool linesPassApart(const PairLines& p, float r2) {
 /// (radius, length or tMax not > 0, NaN anywhere) gives false.
 bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit,
                       RayBeamKernel kernel = RayBeamKernel::OneD);
+/// The same with the pair's lines already computed (`lines` =
+/// pairLines(segment, beam), as the beam map's Cull::Lines hands them on).
+bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, const PairLines& lines,
+                      RayBeamHit& hit, RayBeamKernel kernel = RayBeamKernel::OneD);
 
 }  // namespace femto::beams

@@ -311,7 +311,14 @@ TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
   for (int i = 0; i < 300; ++i) {
     CameraSegment seg = randomSegment(rng);
     map.query(seg, sorted);
-    const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines);
+    std::vector<PairLines> handed;
+    const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines, &handed);
+    ASSERT_EQ(handed.size(), lines.size());
+    for (size_t k = 0; k < lines.size(); ++k) {  // the lines handed on are the beams' own
+      const PairLines p = pairLines(seg, beams[lines[k]]);
+      EXPECT_EQ(handed[k].offset2, p.offset2);
+      EXPECT_EQ(handed[k].s0, p.s0);
+    }
     const size_t crossedBoxes = map.queryUnsorted(seg, boxes, marks, BeamMap::Cull::Boxes);
     EXPECT_EQ(crossedLines, crossedBoxes) << "query " << i;  // the same traversal: the same piece boxes
     EXPECT_GE(crossedBoxes, boxes.size()) << "query " << i;   // each beam at least once
@@ -380,7 +387,7 @@ TEST(BeamMap, CostRuleGivesTightPiecesWhereSegmentsAreMany) {
   EXPECT_GT(tight.pieceCount(), 60u * beams.size());
 
   BeamMapOptions few;
-  few.crossingDensity = 1.0;  // kappa = sqrt(22): longer than any beam here
+  few.crossingDensity = 1.0;  // kappa = sqrt(10): pieces longer than any beam here
   EXPECT_EQ(BeamMap(beams, radius, few).pieceCount(), beams.size());
   std::vector<Beam> axes = {makeBeam({0, 0.5f, 0.5f}, {1, 0, 0}, 1.0f), makeBeam({0.5f, 0, 0.5f}, {0, 1, 0}, 1.0f),
                             makeBeam({0.5f, 0.5f, 0}, {0, 0, 1}, 1.0f)};
@@ -399,7 +406,7 @@ TEST(BeamMap, PieceRulesFindTheSamePairs) {
   const std::vector<Beam> beams = longObliqueBeams(rng, 1500);
   const float radius = 0.005f;
   BeamMapOptions sparse, dense;
-  sparse.crossingDensity = 10.0;  // few segments: long pieces
+  sparse.crossingDensity = 3.0;  // few segments: long pieces
   dense.crossingDensity = 1e6;    // many: pieces of a few radii
   dense.maxPiecesPerBeam = 1e4f;
   BeamMap fixedMap(beams, radius), sparseMap(beams, radius, sparse), denseMap(beams, radius, dense);
