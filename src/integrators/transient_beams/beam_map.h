@@ -5,10 +5,12 @@
 //
 // Structure: a bounding volume hierarchy over beam *pieces* (long beams are
 // cut into pieces of bounded length so that each piece's axis-aligned box,
-// the piece inflated by the radius, stays close to the beam's capsule), built
-// with a binned surface area heuristic. Choices measured in docs/BENCHMARKS.md
-// ("Beam map"); the build is parallel but deterministic (same beams, same
-// tree).
+// the piece inflated by the radius, stays close to the beam's capsule; how
+// long: a fixed number of radii, or a cost rule weighing the build against
+// the crossings the queries will make, BeamMapOptions::crossingDensity),
+// built with a binned surface area heuristic. Choices measured in
+// docs/BENCHMARKS.md ("Beam map") and docs/photon-beams.md ("Culling
+// since"); the build is parallel but deterministic (same beams, same tree).
 #include <cstdint>
 #include <vector>
 
