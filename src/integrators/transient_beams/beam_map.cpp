@@ -411,17 +411,14 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
 }
 
 size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                              Cull cull, std::vector<PairLines>* lines) const {
+                              Cull cull) const {
   out.clear();
-  if (lines) lines->clear();
   if (marks.mark.size() != beams_.size() || marks.query == std::numeric_limits<uint32_t>::max()) {
     marks.mark.assign(beams_.size(), 0);
     marks.query = 0;
   }
   const uint32_t stamp = ++marks.query;
   uint32_t* mark = marks.mark.data();
-  // The padded radius of the line test (beam_map.h, Cull::Lines).
-  const float padded = radius_ * 1.001f, r2 = padded * padded;
   const bool lineCull = cull == Cull::Lines;
   size_t crossed = 0;
   const Beam* beams = beams_.data();
@@ -433,14 +430,7 @@ size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t
     // beam, made the thick medium of the media suite 5 % slower: pieces of
     // 52 bytes instead of 28.)
     mark[piece.beam] = stamp;
-    if (!lineCull) {
-      out.push_back(piece.beam);
-      return;
-    }
-    const PairLines p = pairLines(segment, beams[piece.beam]);
-    if (linesPassApart(p, r2)) return;
-    out.push_back(piece.beam);
-    if (lines) lines->push_back(p);
+    if (!lineCull || !linesFarApart(segment, beams[piece.beam], radius_)) out.push_back(piece.beam);
   });
   return crossed;
 }

@@ -72,13 +72,12 @@ class BeamMap {
   enum class Cull {
     /// All of them: query()'s beams.
     Boxes,
-    /// Only those whose axis the segment's line passes within the radius of
-    /// (or runs parallel to): rayBeamIntersect's first test (ray_beam.h,
-    /// linesPassApart), with a radius 0.1 % larger so that rounding can never
-    /// drop a beam it would keep. Done here, once per beam, instead of after
-    /// the query: the same work, but the beams returned are those near the
-    /// segment's line, not all those near a box (for a long beam at a small
-    /// radius the box of a piece is mostly empty space).
+    /// Only those whose axis the segment's line may pass within the radius
+    /// of: the lines' distance (ray_beam.h, linesFarApart, conservative
+    /// against rayBeamIntersect's first test), once per beam, at half that
+    /// test's cost. The beams returned are then those near the segment's
+    /// line, not all those near a box (for a long beam at a small radius the
+    /// box of a piece is mostly empty space).
     Lines,
   };
   /// The same beams as query() (or, with Cull::Lines, those of them near the
@@ -86,12 +85,10 @@ class BeamMap {
   /// the segment, so deterministic), deduplicated with `marks` instead of a
   /// sort: O(candidates) instead of O(candidates log candidates), which
   /// matters when a segment meets hundreds of beams (the camera side's hot
-  /// loop). `marks` is sized on first use. With Cull::Lines and `lines`,
-  /// lines[k] receives pairLines(segment, beams()[out[k]]) (rayBeamIntersect
-  /// then need not compute them again). Returns how many piece boxes the
+  /// loop). `marks` is sized on first use. Returns how many piece boxes the
   /// segment crossed (the map's work; statistics).
   size_t queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                       Cull cull = Cull::Boxes, std::vector<PairLines>* lines = nullptr) const;
+                       Cull cull = Cull::Boxes) const;
 
   /// BeamMapOptions::crossingDensity for `beams` at `radius` from sample
   /// segments standing for the queries, each for `weight` real ones (probe

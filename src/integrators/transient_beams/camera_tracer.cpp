@@ -148,9 +148,9 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
   const std::vector<Beam>& beams = maps_.beams.beams();
   // Beams: the map also drops those whose axis the segment's line passes
-  // beyond the radius, rayBeamIntersect's first test (beam_map.h, Cull::Lines).
-  stats_.piecesCrossed += points ? maps_.beams.queryUnsorted(segment, scratch_, marks_, BeamMap::Cull::Boxes)
-                                 : maps_.beams.queryUnsorted(segment, scratch_, marks_, BeamMap::Cull::Lines, &lines_);
+  // beyond the radius (beam_map.h, Cull::Lines).
+  stats_.piecesCrossed +=
+      maps_.beams.queryUnsorted(segment, scratch_, marks_, points ? BeamMap::Cull::Boxes : BeamMap::Cull::Lines);
   ++stats_.segments;
   stats_.candidates += scratch_.size();
   const double horizon = recorder.horizon();
@@ -158,15 +158,15 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const PhaseFunction& phase = medium.phase();
   // The beams here were ended by this medium's roulette (beam_roulette.h).
   const BeamRoulette roulette = BeamRoulette::of(medium);
-  for (size_t k = 0; k < scratch_.size(); ++k) {
-    const Beam& beam = beams[scratch_[k]];
+  for (uint32_t index : scratch_) {
+    const Beam& beam = beams[index];
     // Beams of another medium overlapping this one (nested media) do not scatter here.
     if (beam.medium != &medium || !settings_.depthAllowed(s.segments + 1 + beam.depth)) continue;
     const double opl0 = s.opl + beam.opl;
     if (!(opl0 < horizon)) continue;
     RayBeamHit hit;
     const bool near = points ? rayPointIntersect(segment, beam, maps_.beamRadius, hit)
-                             : rayBeamIntersect(segment, beam, maps_.beamRadius, lines_[k], hit);
+                             : rayBeamIntersect(segment, beam, maps_.beamRadius, hit);
     if (!near || !(hit.kernel > 0.0f)) continue;
     const Point3f x = segment.ray(hit.tRay);
     float fp = phase.eval(-s.ray.d, -beam.direction);

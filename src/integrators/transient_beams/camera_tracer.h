@@ -75,7 +75,6 @@ struct CameraStatistics {
 /// the work counters.
 struct CameraScratch {
   std::vector<uint32_t> found;
-  std::vector<PairLines> lines;  // found's pairs' lines (beams only, BeamMap::Cull::Lines)
   BeamMap::VisitMarks marks;
   CameraStatistics stats;
 };
@@ -94,7 +93,7 @@ class CameraTracer {
  public:
   /// `scratch`: one per thread, kept between calls.
   CameraTracer(const BeamSettings& settings, const PassMaps& maps, CameraScratch& scratch)
-      : settings_(settings), maps_(maps), scratch_(scratch.found), lines_(scratch.lines), marks_(scratch.marks), stats_(scratch.stats) {}
+      : settings_(settings), maps_(maps), scratch_(scratch.found), marks_(scratch.marks), stats_(scratch.stats) {}
 
   /// Trace one camera sample along `ray` (OPL 0 at the sensor).
   void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder);
@@ -130,7 +129,6 @@ class CameraTracer {
   const BeamSettings& settings_;
   const PassMaps& maps_;
   std::vector<uint32_t>& scratch_;
-  std::vector<PairLines>& lines_;
   BeamMap::VisitMarks& marks_;
   CameraStatistics& stats_;
 };

@@ -26,11 +26,6 @@ double startDistance(const Vec3f& delta, const Vec3f& w, float t) {
 
 bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, RayBeamHit& hit,
                       RayBeamKernel kernel) {
-  return rayBeamIntersect(segment, beam, radius, pairLines(segment, beam), hit, kernel);
-}
-
-bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radius, const PairLines& lines,
-                      RayBeamHit& hit, RayBeamKernel kernel) {
   const float r = radius, r2 = radius * radius, length = beam.length, tMax = segment.tMax;
   // Degenerate input: no kernel region or no segment (NaN fails every test).
   if (!(r2 > 0.0f) || !(r < Infinity) || !(length > 0.0f) || !(length < Infinity) || !(tMax > 0.0f)) return false;
@@ -39,11 +34,12 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   const Vec3f& v = beam.direction;
   // The two lines (ray_beam.h, PairLines). The distance to the beam's axis
   // is |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
+  const PairLines lines = pairLines(segment, beam);
   const Vec3f &delta = lines.delta, &wPerp = lines.wPerp, &dPerp = lines.dPerp;
   const float cosTheta = lines.cosTheta, s0 = lines.s0, a = lines.sin2;
   const bool parallel = !(a > RayBeamParallelSin2);
   // Tested first: it rejects most candidates a beam map returns, division-free
-  // (the beam map's line cull, beam_map.h, is the same test).
+  // (the beam map's line cull, linesFarApart, keeps every pair it keeps).
   const float disc = a * r2 - lines.offset2;
   if (!parallel && !(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
 

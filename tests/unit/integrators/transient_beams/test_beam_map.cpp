@@ -311,14 +311,7 @@ TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
   for (int i = 0; i < 300; ++i) {
     CameraSegment seg = randomSegment(rng);
     map.query(seg, sorted);
-    std::vector<PairLines> handed;
-    const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines, &handed);
-    ASSERT_EQ(handed.size(), lines.size());
-    for (size_t k = 0; k < lines.size(); ++k) {  // the lines handed on are the beams' own
-      const PairLines p = pairLines(seg, beams[lines[k]]);
-      EXPECT_EQ(handed[k].offset2, p.offset2);
-      EXPECT_EQ(handed[k].s0, p.s0);
-    }
+    const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines);
     const size_t crossedBoxes = map.queryUnsorted(seg, boxes, marks, BeamMap::Cull::Boxes);
     EXPECT_EQ(crossedLines, crossedBoxes) << "query " << i;  // the same traversal: the same piece boxes
     EXPECT_GE(crossedBoxes, boxes.size()) << "query " << i;   // each beam at least once
@@ -341,6 +334,48 @@ TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
   ASSERT_GT(pairs, 100u);  // the bounds below mean something
   EXPECT_LT(double(lineCount), 2.0 * double(pairs)) << lineCount << " candidates for " << pairs << " pairs";
   EXPECT_GT(double(boxCount), 4.0 * double(pairs)) << "the boxes alone are tight here: the bound above tells nothing";
+}
+
+// linesFarApart (the map's line test) never drops a pair rayBeamIntersect
+// keeps: pairs built to pass at 0.98-1.02 radii, at angles from 1e-6 to 1.5
+// rad, far from the origin (|delta| up to ~170, where float rounding is
+// coarsest against a radius of 0.001-0.05); and it does cull: most pairs
+// passing at 1.1 radii or more at angles above 0.05 rad are dropped (its
+// slack, 4e-6 |delta|_1 in d sin(theta), keeps more of the pairs at small
+// angles far from the origin).
+TEST(BeamMap, LineTestNeverDropsAKeptPair) {
+  PCG32 rng(59, 13);
+  size_t kept = 0, far = 0, farDropped = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const Vec3f v = randomDirection(rng);
+    Vec3f u = cross(v, randomDirection(rng));
+    if (!(length(u) > 0.1f)) continue;
+    u = normalize(u);
+    const float angle = std::pow(10.0f, -6.0f + 6.2f * rng.nextFloat());
+    const Vec3f w = normalize(v * std::cos(angle) + cross(u, v) * std::sin(angle));
+    const float radius = std::pow(10.0f, -3.0f + 1.7f * rng.nextFloat());
+    const bool nearPair = i % 2 == 0;
+    const float d = radius * (nearPair ? 0.98f + 0.04f * rng.nextFloat() : 1.1f + rng.nextFloat());
+    const Point3f b(100.0f * (rng.nextFloat() - 0.5f), 100.0f * (rng.nextFloat() - 0.5f),
+                    100.0f * (rng.nextFloat() - 0.5f));
+    Beam beam = makeBeam(b, v, 4.0f);
+    const float tMax = 4.0f * rng.nextFloat() + 0.01f;
+    const Point3f closest = b + v * 2.0f + u * d;
+    const CameraSegment seg = makeSegment(closest - w * (0.5f * tMax), w, tMax);
+    RayBeamHit hit;
+    const bool apart = linesFarApart(seg, beam, radius);
+    if (rayBeamIntersect(seg, beam, radius, hit)) {
+      ++kept;
+      EXPECT_FALSE(apart) << "pair " << i << " kept by rayBeamIntersect, dropped by the line test (angle " << angle
+                          << ", d/r " << d / radius << ", radius " << radius << ")";
+    }
+    if (!nearPair && angle > 0.05f) {
+      ++far;
+      farDropped += apart;
+    }
+  }
+  EXPECT_GT(kept, 10000u);
+  EXPECT_GT(double(farDropped), 0.9 * double(far)) << farDropped << " of " << far;
 }
 
 /// Long beams through the unit cube's centre in random directions at least
