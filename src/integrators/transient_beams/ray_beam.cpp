@@ -15,6 +15,13 @@ namespace {
 // its projection s(t) is constant and the cap planes do not clip it (dividing
 // by cos(theta) would produce inf or 0/0).
 constexpr float Perpendicular = 1e-12f;
+// sin^2(theta) below this (theta < 1e-5 rad, about the rounding of unit float
+// vectors): the lines are parallel and the closest-approach quadratic
+// degenerates (its leading coefficient is rounding noise). The distance to
+// the axis then varies by < 1e-5 per unit length; it is taken at the middle
+// of the slab-clipped segment.
+constexpr float ParallelSin2 = 1e-10f;
+
 /// Distance from ray.o + t w to the beam's start, |delta + t w| (delta = ray.o - b), in double.
 double startDistance(const Vec3f& delta, const Vec3f& w, float t) {
   const double x = double(delta.x) + double(t) * w.x, y = double(delta.y) + double(t) * w.y,
@@ -32,15 +39,24 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
 
   const Vec3f& w = segment.ray.d;
   const Vec3f& v = beam.direction;
-  // The two lines (ray_beam.h, PairLines). The distance to the beam's axis
-  // is |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
-  const PairLines lines = pairLines(segment, beam);
-  const Vec3f &delta = lines.delta, &wPerp = lines.wPerp, &dPerp = lines.dPerp;
-  const float cosTheta = lines.cosTheta, s0 = lines.s0, a = lines.sin2;
-  const bool parallel = !(a > RayBeamParallelSin2);
+  const Vec3f delta = segment.ray.o - beam.origin;
+  const float cosTheta = dot(w, v);
+  const float s0 = dot(delta, v);  // projection of ray.o on the beam: s(t) = s0 + t cos(theta)
+
+  // Components perpendicular to the beam: the distance to its axis is
+  // |dPerp + t wPerp|, and |.|^2 < r^2 is the quadratic a t^2 + 2 b t + e < 0.
+  const Vec3f wPerp = w - v * cosTheta;
+  const Vec3f dPerp = delta - v * s0;
+  const float a = dot(wPerp, wPerp);  // sin^2(theta)
+  const bool parallel = !(a > ParallelSin2);
+  // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
+  // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
+  // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
   // Tested first: it rejects most candidates a beam map returns, division-free
-  // (the beam map's line cull, linesFarApart, keeps every pair it keeps).
-  const float disc = a * r2 - lines.offset2;
+  // (with BeamMap::Cull::Lines the map has already dropped most of those:
+  // linesFarApart, ray_beam.h, keeps every pair this test keeps).
+  const Vec3f m = cross(dPerp, wPerp);
+  const float disc = a * r2 - dot(m, m);
   if (!parallel && !(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)
 
   // Slab between the cap planes, sBegin <= s(t) <= sEnd, intersected with

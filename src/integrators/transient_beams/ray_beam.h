@@ -80,47 +80,11 @@ struct RayBeamHit {
   float tRayBegin = 0.0f, tRayEnd = 0.0f;
 };
 
-/// sin^2(theta) below this (theta < 1e-5 rad, about the rounding of unit float
-/// vectors): the lines are parallel and the closest-approach quadratic
-/// degenerates (its leading coefficient is rounding noise). The distance to
-/// the axis then varies by < 1e-5 per unit length; rayBeamIntersect takes it
-/// at the middle of the slab-clipped segment.
-inline constexpr float RayBeamParallelSin2 = 1e-10f;
-
-/// A camera segment's line against a beam's, as rayBeamIntersect sees them
-/// first (w = ray.d, v = beam.direction, b = beam.origin).
-struct PairLines {
-  Vec3f delta;     // ray.o - b
-  float cosTheta;  // w.v
-  float s0;        // projection of ray.o on the beam: s(t) = s0 + t cos(theta)
-  Vec3f wPerp;     // w - v cos(theta): the camera direction across the beam
-  Vec3f dPerp;     // delta - v s0: ray.o's offset from the beam's axis
-  float sin2;      // |wPerp|^2 = sin^2(theta)
-  /// |dPerp x wPerp|^2 = sin^2(theta) d^2, d the distance between the lines:
-  /// the discriminant / 4 of the cylinder quadratic is sin2 r^2 - offset2
-  /// (Lagrange's identity), free of the cancellation of its large terms.
-  float offset2;
-};
-
-inline PairLines pairLines(const CameraSegment& segment, const Beam& beam) {
-  PairLines p;
-  const Vec3f &w = segment.ray.d, &v = beam.direction;
-  p.delta = segment.ray.o - beam.origin;
-  p.cosTheta = dot(w, v);
-  p.s0 = dot(p.delta, v);
-  p.wPerp = w - v * p.cosTheta;
-  p.dPerp = p.delta - v * p.s0;
-  p.sin2 = dot(p.wPerp, p.wPerp);
-  const Vec3f m = cross(p.dPerp, p.wPerp);
-  p.offset2 = dot(m, m);
-  return p;
-}
-
 /// The beam map's cull (BeamMap::Cull::Lines): true only when the segment's
 /// line passes the beam's axis farther than `radius`, so that the segment
-/// misses the kernel region wherever its ends are. Half the work of
-/// pairLines: the lines' distance is |delta . n| / |n|, n = w x v (|n| =
-/// sin(theta)). Conservative against rayBeamIntersect's own test (it never
+/// misses the kernel region wherever its ends are. About half the work of
+/// rayBeamIntersect's first test: the lines' distance is |delta . n| / |n|,
+/// n = w x v (|n| = sin(theta)). Conservative against that test (it never
 /// says true where that test keeps the pair): both err by a few float ulps of
 /// |delta| in d sin(theta) (the cancellation in delta's part across the beam),
 /// covered by a slack of 4e-6 |delta|_1 (> 60 ulps); the radius is padded by
