@@ -5,14 +5,17 @@
 //
 // Structure: a bounding volume hierarchy over beam *pieces* (long beams are
 // cut into pieces of bounded length so that each piece's axis-aligned box,
-// the piece inflated by the radius, stays close to the beam's capsule), built
-// with a binned surface area heuristic. Choices measured in docs/BENCHMARKS.md
-// ("Beam map"); the build is parallel but deterministic (same beams, same
-// tree).
+// the piece inflated by the radius, stays close to the beam's capsule; how
+// long: a fixed number of radii, or a cost rule weighing the build against
+// the crossings the queries will make, BeamMapOptions::crossingDensity),
+// built with a binned surface area heuristic. Choices measured in
+// docs/BENCHMARKS.md ("Beam map") and docs/photon-beams.md ("Culling
+// since"); the build is parallel but deterministic (same beams, same tree).
 #include <cstdint>
 #include <vector>
 
 #include <transient_beams/beam.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 
@@ -30,6 +33,16 @@ struct BeamMapOptions {
   /// Split rule: binned surface area heuristic, or the object median along
   /// the widest centroid axis.
   enum class Split { Sah, Median } split = Split::Sah;
+  /// How many times query segments will cross a piece box per unit of its
+  /// half surface area over the map's life (crossingDensity() estimates it).
+  /// 0: unknown, and every beam is cut into pieces of pieceLengthInRadii
+  /// radii. > 0: each beam's pieces get the length that minimises the cost of
+  /// building them plus the cost of the crossings their boxes will take
+  /// (beam_map.cpp, "Piece length"): long where few segments pass or where
+  /// the beam runs along an axis (its boxes are tight at any length), down to
+  /// about 3.5 radii on diagonal beams that many segments cross.
+  /// maxPiecesPerBeam still bounds the total.
+  double crossingDensity = 0.0;
 };
 
 class BeamMap {
@@ -55,12 +68,36 @@ class BeamMap {
     std::vector<uint32_t> mark;  // the query that last reported beam i
     uint32_t query = 0;
   };
-  /// The same beams as query(), each once, but in traversal order (fixed by
-  /// the map and the segment, so deterministic), deduplicated with `marks`
-  /// instead of a sort: O(candidates) instead of O(candidates log candidates),
-  /// which matters when a segment meets hundreds of beams (the camera side's
-  /// hot loop). `marks` is sized on first use.
-  void queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks) const;
+  /// What queryUnsorted reports of the beams whose piece boxes a segment crosses.
+  enum class Cull {
+    /// All of them: query()'s beams.
+    Boxes,
+    /// Only those whose axis the segment's line may pass within the radius
+    /// of: the lines' distance (ray_beam.h, linesFarApart, conservative
+    /// against rayBeamIntersect's first test), once per beam, at half that
+    /// test's cost. The beams returned are then those near the segment's
+    /// line, not all those near a box (for a long beam at a small radius the
+    /// box of a piece is mostly empty space).
+    Lines,
+  };
+  /// The same beams as query() (or, with Cull::Lines, those of them near the
+  /// segment's line), each once, but in traversal order (fixed by the map and
+  /// the segment, so deterministic), deduplicated with `marks` instead of a
+  /// sort: O(candidates) instead of O(candidates log candidates), which
+  /// matters when a segment meets hundreds of beams (the camera side's hot
+  /// loop). `marks` is sized on first use. Returns how many piece boxes the
+  /// segment crossed (the map's work; statistics).
+  size_t queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
+                       Cull cull = Cull::Boxes) const;
+
+  /// BeamMapOptions::crossingDensity for `beams` at `radius` from sample
+  /// segments standing for the queries, each for `weight` real ones (probe
+  /// camera segments: weight = camera samples per probe ray): crossings of
+  /// the segments with the boxes of up to 2048 of the beams (whole, inflated
+  /// by the radius) per unit of those boxes' half area, times the weight.
+  /// Deterministic; 0 without segments or beams.
+  static double crossingDensity(const std::vector<Beam>& beams, float radius,
+                                const std::vector<CameraSegment>& segments, double weight);
 
   const std::vector<Beam>& beams() const { return beams_; }
   float radius() const { return radius_; }
@@ -76,8 +113,8 @@ class BeamMap {
   float radius_ = 0.0f;
   Impl* impl_ = nullptr;
 
-  /// Calls report(beam index) for every piece whose box the segment crosses
-  /// (a beam once per piece hit), in traversal order.
+  /// Calls report(piece) for every piece whose box the segment crosses (a
+  /// beam once per piece hit), in traversal order.
   template <typename Report>
   void traverse(const CameraSegment& segment, Report&& report) const;
 };

@@ -26,8 +26,12 @@ class BeamPass final : public TransientIntegrator {
   /// not stored) and build its maps with the pass's radii. `settings` must be
   /// resolved (radii known).
   BeamPass(const Scene& scene, const BeamSettings& settings, int pass, uint64_t seed, double horizon);
-  /// Maps over photons traced elsewhere (tests build passes by hand).
-  BeamPass(const BeamSettings& settings, int pass, PhotonPass traced);
+  /// Maps over photons traced elsewhere (tests build passes by hand). With a
+  /// scene, the beam map's pieces follow its cost rule (beam_map.h,
+  /// BeamMapOptions::crossingDensity) for the scene's camera samples per pass;
+  /// without, fixed pieces of a few radii.
+  BeamPass(const BeamSettings& settings, int pass, PhotonPass traced, const Scene* scene = nullptr,
+           double horizon = Infinity);
 
   void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const override;
 
@@ -45,6 +49,7 @@ class BeamPass final : public TransientIntegrator {
  private:
   std::chrono::steady_clock::time_point buildStart_;  // first member: initialised before the maps are built
   BeamSettings settings_;
+  BeamMapOptions mapOptions_;  // before beams_: computed from the traced beams before they move into the map
   BeamMap beams_;
   SurfacePhotonMap photons_;
   PassMaps maps_;

@@ -142,17 +142,20 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   // Observer time off: the camera's first segment adds no OPL (its beams
   // then show where light is, not when the camera sees it).
   segment.eta = segmentCounts(settings_.observerTime, s.cameraSegment) ? medium.eta() : 0.0f;
+  // Beams (ray x beam 1D) or photon points (zero-length beams, the beam
+  // radiance estimate, ray_point.h): the same estimate once the pair's
+  // geometry is known, T_beam aside (a point's power already holds it).
+  const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
   const std::vector<Beam>& beams = maps_.beams.beams();
-  maps_.beams.queryUnsorted(segment, scratch_, marks_);
+  // Beams: the map also drops those whose axis the segment's line passes
+  // beyond the radius (beam_map.h, Cull::Lines).
+  stats_.piecesCrossed +=
+      maps_.beams.queryUnsorted(segment, scratch_, marks_, points ? BeamMap::Cull::Boxes : BeamMap::Cull::Lines);
   ++stats_.segments;
   stats_.candidates += scratch_.size();
   const double horizon = recorder.horizon();
   const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
   const PhaseFunction& phase = medium.phase();
-  // Beams (ray x beam 1D) or photon points (zero-length beams, the beam
-  // radiance estimate, ray_point.h): the same estimate once the pair's
-  // geometry is known, T_beam aside (a point's power already holds it).
-  const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
   // The beams here were ended by this medium's roulette (beam_roulette.h).
   const BeamRoulette roulette = BeamRoulette::of(medium);
   for (uint32_t index : scratch_) {

@@ -57,6 +57,7 @@ namespace femto::beams {
 struct CameraStatistics {
   uint64_t cameraRays = 0;      // camera samples traced
   uint64_t segments = 0;        // camera segments in media: beam map queries
+  uint64_t piecesCrossed = 0;   // beam map piece boxes the queries' segments crossed (BeamMap::queryUnsorted)
   uint64_t candidates = 0;      // beams the queries returned: rayBeamIntersect calls (ray x beam queries)
   uint64_t pairHits = 0;        // pairs within the kernel radius that deposited an estimate
   uint64_t surfaceQueries = 0;  // surface photon map queries
@@ -64,6 +65,7 @@ struct CameraStatistics {
 
   CameraStatistics& operator+=(const CameraStatistics& o) {
     cameraRays += o.cameraRays, segments += o.segments, candidates += o.candidates, pairHits += o.pairHits;
+    piecesCrossed += o.piecesCrossed;
     surfaceQueries += o.surfaceQueries, surfacePhotons += o.surfacePhotons;
     return *this;
   }

@@ -52,7 +52,9 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   // Discriminant / 4 = b^2 - a e = a r^2 - |dPerp x wPerp|^2 (Lagrange's
   // identity): no cancellation of the large terms b^2 and a |dPerp|^2.
   // |dPerp x wPerp|^2 / a = d^2, the squared distance between the lines.
-  // Tested first: it rejects most candidates a beam map returns, division-free.
+  // Tested first: it rejects most candidates a beam map returns, division-free
+  // (with BeamMap::Cull::Lines the map has already dropped most of those:
+  // linesFarApart, ray_beam.h, keeps every pair this test keeps).
   const Vec3f m = cross(dPerp, wPerp);
   const float disc = a * r2 - dot(m, m);
   if (!parallel && !(disc > 0.0f)) return false;  // passes at d >= r (tangent: zero-length chord)

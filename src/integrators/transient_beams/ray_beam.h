@@ -48,7 +48,11 @@
 // pairs, grazing (tangent) passes, beams starting or ending inside the
 // kernel, camera segments ending inside it, zero-length overlaps, degenerate
 // and non-finite input. On true, every field of the hit is finite.
+#include <cmath>
+
 #include <transient_beams/beam.h>
+
+#include <femto/math/vector.h>
 
 namespace femto::beams {
 
@@ -75,6 +79,27 @@ struct RayBeamHit {
   /// The overlap on the camera segment: 0 <= tRayBegin < tRayEnd <= tMax.
   float tRayBegin = 0.0f, tRayEnd = 0.0f;
 };
+
+/// The beam map's cull (BeamMap::Cull::Lines): true only when the segment's
+/// line passes the beam's axis farther than `radius`, so that the segment
+/// misses the kernel region wherever its ends are. About half the work of
+/// rayBeamIntersect's first test: the lines' distance is |delta . n| / |n|,
+/// n = w x v (|n| = sin(theta)). Conservative against that test (it never
+/// says true where that test keeps the pair): both err by a few float ulps of
+/// |delta| in d sin(theta) (the cancellation in delta's part across the beam),
+/// covered by a slack of 4e-6 |delta|_1 (> 60 ulps); the radius is padded by
+/// 0.1 % and sin(theta) <= 1 bounds the cross term; pairs within 1e-4 rad of
+/// parallel (rayBeamIntersect's parallel case is 1e-5) are kept; NaN keeps.
+inline bool linesFarApart(const CameraSegment& segment, const Beam& beam, float radius) {
+  const Vec3f delta = segment.ray.o - beam.origin;
+  const Vec3f n = cross(segment.ray.d, beam.direction);
+  const float n2 = dot(n, n);
+  const float along = dot(delta, n);  // d |n|, signed
+  const float r = radius * 1.001f;
+  const float slack = 4e-6f * (std::abs(delta.x) + std::abs(delta.y) + std::abs(delta.z));
+  // (r |n| + slack)^2 <= r^2 n2 + slack (2 r + slack), as |n| <= 1.
+  return n2 > 1e-8f && along * along > r * r * n2 + slack * (2.0f * r + slack);
+}
 
 /// Does `segment` pass within `radius` of `beam` (through its kernel region,
 /// with an overlap of positive length)? On true, `hit` holds the estimate's

@@ -112,7 +112,8 @@ struct PassTotals {
                " map pieces each; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
                cameraSeconds, " s; ", camera.cameraRays, " camera rays, ", camera.segments, " beam queries (",
                double(camera.candidates) / segments, " candidates and ", double(camera.pairHits) / segments,
-               " pair hits each), ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
+               " pair hits each), ", double(camera.piecesCrossed) / segments,
+               " map piece boxes crossed per query, ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
                double(camera.candidates) / cameraSeconds, " ray x beam tests/s, ",
                double(camera.pairHits) / cameraSeconds, " pair hits/s, ", double(camera.surfacePhotons) / rays,
                " surface photons per camera ray");
@@ -167,7 +168,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
                   derived.time, ", boundary ", derived.boundary, ", light ", derived.light, "), ",
                   settings.beamPhotons(), " beam photons per pass");
         }
-        previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced));
+        previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced), &scene, horizon);
       };
       // Photons are traced with the thread count the user asked for.
       if (options.threads > 0) {

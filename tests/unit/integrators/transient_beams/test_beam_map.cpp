@@ -15,6 +15,7 @@
 #include <femto/base/error.h>
 #include <femto/math/pcg32.h>
 #include <transient_beams/beam_map.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 namespace {
@@ -286,6 +287,211 @@ TEST(BeamMap, UnsortedQueryFindsTheSameBeamsOnce) {
     total += sorted.size();
   }
   EXPECT_GT(total, 300u);  // the queries do find beams
+}
+
+// Cull::Lines (the camera side's query) keeps exactly the box candidates
+// whose axis the segment's line passes within the (padded) radius: every pair
+// rayBeamIntersect accepts, and every beam within the radius by the exact
+// distance, stays; on long oblique beams at a small radius (issue 14's box:
+// boxes of long pieces are mostly empty space) most box candidates go, so
+// at least one candidate in two is a pair hit. Cull::Boxes alone gives one
+// in 29 here: the bound fails if the line test stops culling.
+TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
+  PCG32 rng(31, 7);
+  std::vector<Beam> beams;
+  for (int i = 0; i < 3000; ++i) {
+    Vec3f d = randomDirection(rng);
+    beams.push_back(makeBeam(Point3f(0.5f) - d * (0.5f + rng.nextFloat()), d, 1.0f + 2.0f * rng.nextFloat()));
+  }
+  const float radius = 0.005f;
+  BeamMap map(beams, radius);
+  BeamMap::VisitMarks marks;
+  std::vector<uint32_t> boxes, lines, sorted;
+  size_t boxCount = 0, lineCount = 0, pairs = 0;
+  for (int i = 0; i < 300; ++i) {
+    CameraSegment seg = randomSegment(rng);
+    map.query(seg, sorted);
+    const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines);
+    const size_t crossedBoxes = map.queryUnsorted(seg, boxes, marks, BeamMap::Cull::Boxes);
+    EXPECT_EQ(crossedLines, crossedBoxes) << "query " << i;  // the same traversal: the same piece boxes
+    EXPECT_GE(crossedBoxes, boxes.size()) << "query " << i;   // each beam at least once
+    std::sort(boxes.begin(), boxes.end());
+    EXPECT_EQ(boxes, sorted) << "query " << i;
+    std::sort(lines.begin(), lines.end());
+    EXPECT_TRUE(std::includes(sorted.begin(), sorted.end(), lines.begin(), lines.end())) << "query " << i;
+    for (uint32_t b : sorted) {
+      RayBeamHit hit;
+      const bool kept = std::binary_search(lines.begin(), lines.end(), b);
+      if (rayBeamIntersect(seg, beams[b], radius, hit)) {
+        ++pairs;
+        EXPECT_TRUE(kept) << "beam " << b << " dropped, query " << i;
+      }
+      if (distance(seg, beams[b]) < 0.999 * radius) EXPECT_TRUE(kept) << "beam " << b << " within the radius dropped";
+    }
+    boxCount += sorted.size();
+    lineCount += lines.size();
+  }
+  ASSERT_GT(pairs, 100u);  // the bounds below mean something
+  EXPECT_LT(double(lineCount), 2.0 * double(pairs)) << lineCount << " candidates for " << pairs << " pairs";
+  EXPECT_GT(double(boxCount), 4.0 * double(pairs)) << "the boxes alone are tight here: the bound above tells nothing";
+}
+
+// linesFarApart (the map's line test) never drops a pair rayBeamIntersect
+// keeps: pairs built to pass at 0.98-1.02 radii, at angles from 1e-6 to 1.5
+// rad, far from the origin (|delta| up to ~170, where float rounding is
+// coarsest against a radius of 0.001-0.05); and it does cull: most pairs
+// passing at 1.1 radii or more at angles above 0.05 rad are dropped (its
+// slack, 4e-6 |delta|_1 in d sin(theta), keeps more of the pairs at small
+// angles far from the origin).
+TEST(BeamMap, LineTestNeverDropsAKeptPair) {
+  PCG32 rng(59, 13);
+  size_t kept = 0, far = 0, farDropped = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const Vec3f v = randomDirection(rng);
+    Vec3f u = cross(v, randomDirection(rng));
+    if (!(length(u) > 0.1f)) continue;
+    u = normalize(u);
+    const float angle = std::pow(10.0f, -6.0f + 6.2f * rng.nextFloat());
+    const Vec3f w = normalize(v * std::cos(angle) + cross(u, v) * std::sin(angle));
+    const float radius = std::pow(10.0f, -3.0f + 1.7f * rng.nextFloat());
+    const bool nearPair = i % 2 == 0;
+    const float d = radius * (nearPair ? 0.98f + 0.04f * rng.nextFloat() : 1.1f + rng.nextFloat());
+    const Point3f b(100.0f * (rng.nextFloat() - 0.5f), 100.0f * (rng.nextFloat() - 0.5f),
+                    100.0f * (rng.nextFloat() - 0.5f));
+    Beam beam = makeBeam(b, v, 4.0f);
+    const float tMax = 4.0f * rng.nextFloat() + 0.01f;
+    const Point3f closest = b + v * 2.0f + u * d;
+    const CameraSegment seg = makeSegment(closest - w * (0.5f * tMax), w, tMax);
+    RayBeamHit hit;
+    const bool apart = linesFarApart(seg, beam, radius);
+    if (rayBeamIntersect(seg, beam, radius, hit)) {
+      ++kept;
+      EXPECT_FALSE(apart) << "pair " << i << " kept by rayBeamIntersect, dropped by the line test (angle " << angle
+                          << ", d/r " << d / radius << ", radius " << radius << ")";
+    }
+    if (!nearPair && angle > 0.05f) {
+      ++far;
+      farDropped += apart;
+    }
+  }
+  EXPECT_GT(kept, 10000u);
+  EXPECT_GT(double(farDropped), 0.9 * double(far)) << farDropped << " of " << far;
+}
+
+/// Long beams through the unit cube's centre in random directions at least
+/// 0.1 rad away from every axis (oblique: their boxes are loose), as issue
+/// 14's box with light outside has them (beams 200-600 radii long).
+std::vector<Beam> longObliqueBeams(PCG32& rng, size_t n) {
+  std::vector<Beam> beams;
+  while (beams.size() < n) {
+    Vec3f d = randomDirection(rng);
+    if (std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > std::cos(0.1f)) continue;
+    beams.push_back(makeBeam(Point3f(0.5f) - d * (0.5f + rng.nextFloat()), d, 1.0f + 2.0f * rng.nextFloat()));
+  }
+  return beams;
+}
+
+// The cost rule (BeamMapOptions::crossingDensity) where many segments pass:
+// pieces of a few radii on oblique beams, so box candidates stay within 3 per
+// beam in range for long beams at a small radius. The fixed rule under the
+// map's default cap of 4 pieces per beam gives 29 here (beams ~400 r long,
+// pieces ~100 r): the bound can fail. Where few segments pass, the rule cuts
+// nothing, and an axis-parallel beam is never cut (its box is tight at any
+// length).
+TEST(BeamMap, CostRuleGivesTightPiecesWhereSegmentsAreMany) {
+  PCG32 rng(41, 3);
+  const std::vector<Beam> beams = longObliqueBeams(rng, 1000);
+  const float radius = 0.005f;
+  BeamMapOptions many;
+  many.crossingDensity = 1e6;
+  many.maxPiecesPerBeam = 1e4f;  // the memory cap out of the way
+  BeamMap tight(beams, radius, many), capped(beams, radius);
+  size_t tightCandidates = 0, cappedCandidates = 0, exact = 0;
+  PCG32 q(43, 5);
+  for (int i = 0; i < 300; ++i) {
+    const CameraSegment seg = randomSegment(q);
+    auto [c, e] = checkQuery(tight, seg, 10.0);
+    tightCandidates += c;
+    exact += e;
+    cappedCandidates += checkQuery(capped, seg, 10.0).first;
+  }
+  ASSERT_GT(exact, 100u);  // the bounds mean something
+  EXPECT_LT(double(tightCandidates), 3.0 * double(exact)) << tightCandidates << " candidates for " << exact;
+  EXPECT_GT(double(cappedCandidates), 3.0 * double(exact)) << "the capped fixed rule is as tight: the bound tells nothing";
+  // Pieces of ~3.5-6 radii on these directions (sqrt(12 + kappa^2 / r^2) r / sqrt(S2)).
+  EXPECT_GT(tight.pieceCount(), 60u * beams.size());
+
+  BeamMapOptions few;
+  few.crossingDensity = 1.0;  // kappa = sqrt(10): pieces longer than any beam here
+  EXPECT_EQ(BeamMap(beams, radius, few).pieceCount(), beams.size());
+  std::vector<Beam> axes = {makeBeam({0, 0.5f, 0.5f}, {1, 0, 0}, 1.0f), makeBeam({0.5f, 0, 0.5f}, {0, 1, 0}, 1.0f),
+                            makeBeam({0.5f, 0.5f, 0}, {0, 0, 1}, 1.0f)};
+  EXPECT_EQ(BeamMap(axes, radius, many).pieceCount(), 3u);
+  // The memory cap still holds under the rule.
+  BeamMapOptions cappedMany;
+  cappedMany.crossingDensity = 1e6;
+  EXPECT_LE(BeamMap(beams, radius, cappedMany).pieceCount(), 4u * beams.size());
+}
+
+// The piece rule changes culling only: the pairs within the kernel region
+// (rayBeamIntersect) are the same under either rule and either cull, and so
+// is every estimate; only their order, and so the float sum, can differ.
+TEST(BeamMap, PieceRulesFindTheSamePairs) {
+  PCG32 rng(47, 9);
+  const std::vector<Beam> beams = longObliqueBeams(rng, 1500);
+  const float radius = 0.005f;
+  BeamMapOptions sparse, dense;
+  sparse.crossingDensity = 3.0;  // few segments: long pieces
+  dense.crossingDensity = 1e6;    // many: pieces of a few radii
+  dense.maxPiecesPerBeam = 1e4f;
+  BeamMap fixedMap(beams, radius), sparseMap(beams, radius, sparse), denseMap(beams, radius, dense);
+  // The three cut the beams differently (fixed: about 4 pieces each under the cap).
+  EXPECT_LT(sparseMap.pieceCount(), 2 * beams.size());
+  EXPECT_GT(fixedMap.pieceCount(), 3 * beams.size());
+  EXPECT_GT(denseMap.pieceCount(), 60 * beams.size());
+  BeamMap::VisitMarks marks;
+  std::vector<uint32_t> found;
+  size_t pairs = 0;
+  PCG32 q(53, 2);
+  for (int i = 0; i < 300; ++i) {
+    const CameraSegment seg = randomSegment(q);
+    std::vector<std::vector<uint32_t>> hits;
+    std::vector<double> sums;
+    for (const BeamMap* map : {&fixedMap, &sparseMap, &denseMap})
+      for (BeamMap::Cull cull : {BeamMap::Cull::Boxes, BeamMap::Cull::Lines}) {
+        map->queryUnsorted(seg, found, marks, cull);
+        std::vector<uint32_t>& h = hits.emplace_back();
+        double sum = 0.0;
+        for (uint32_t b : found) {
+          RayBeamHit hit;
+          if (!rayBeamIntersect(seg, beams[b], radius, hit)) continue;
+          h.push_back(b);
+          sum += double(hit.kernel) * (hit.oplEnd - hit.oplBegin + 1.0);
+        }
+        std::sort(h.begin(), h.end());
+        sums.push_back(sum);
+      }
+    for (size_t k = 1; k < hits.size(); ++k) {
+      EXPECT_EQ(hits[k], hits[0]) << "query " << i << ", variant " << k;
+      EXPECT_NEAR(sums[k], sums[0], 1e-12 * std::abs(sums[0])) << "query " << i << ", variant " << k;
+    }
+    pairs += hits[0].size();
+  }
+  EXPECT_GT(pairs, 100u);
+}
+
+TEST(BeamMap, CrossingDensityCountsCrossingsPerUnitArea) {
+  // One beam along x, its box [0, 1] x [-r, r]^2 (half area 4 r + 4 r^2... for r = 0.1:
+  // extents 1.2 (the radius at both ends), 0.2, 0.2: 0.24 + 0.04 + 0.24 = 0.52).
+  const std::vector<Beam> beams = {makeBeam({0, 0, 0}, {1, 0, 0}, 1.0f)};
+  std::vector<CameraSegment> segments = {makeSegment({0.5f, 0, -1}, {0, 0, 1}, 2.0f),     // crosses
+                                         makeSegment({0.5f, 0.5f, -1}, {0, 0, 1}, 2.0f),  // misses
+                                         makeSegment({0.5f, 0, -1}, {0, 0, 1}, 0.5f)};    // stops short
+  EXPECT_NEAR(BeamMap::crossingDensity(beams, 0.1f, segments, 1.0), 1.0 / 0.52, 1e-4);
+  EXPECT_NEAR(BeamMap::crossingDensity(beams, 0.1f, segments, 10.0), 10.0 / 0.52, 1e-3);
+  EXPECT_EQ(BeamMap::crossingDensity(beams, 0.1f, {}, 1.0), 0.0);
+  EXPECT_EQ(BeamMap::crossingDensity({}, 0.1f, segments, 1.0), 0.0);
+  EXPECT_EQ(BeamMap::crossingDensity(beams, 0.1f, segments, 0.0), 0.0);
 }
 
 TEST(BeamMap, RejectsBadInput) {
