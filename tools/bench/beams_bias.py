@@ -63,7 +63,7 @@ def main():
     header("Beams' bias against closed forms", "tools/bench/beams_bias.py",
            f"tools/bench/beams_bias.py --passes {args.passes} --pass-runs {args.pass_runs}"
            f"{'' if args.alpha is None else f' --alpha {args.alpha}'}",
-           [f"transient_beams at its defaults (derived radius, alpha {args.alpha or 'default'}), max_depth 2, "
+           [f"transient_beams at its defaults (derived radius, alpha {args.alpha or 'as the integrator reads it'}), max_depth 2, "
             "8×8 pixels; runs × passes "
             f"= {args.pass_runs} per row; window sum over the closed form of single scattering"])
     print("| scene | passes | runs | window / closed form − 1 | standard error | bias shown below 0.5 % | "
