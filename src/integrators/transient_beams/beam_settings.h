@@ -50,7 +50,7 @@ struct BeamSettings : PathDepthSettings {
   float radius = 0.0f;                // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
   float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
   float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
-  float alpha = 0.7f;                 // progressive radius reduction, in (0, 1]
+  float alpha = 0.9f;                 // progressive radius reduction, in (0, 1] (docs/photon-beams.md: why 0.9)
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;   // the camera segment counts toward the OPL

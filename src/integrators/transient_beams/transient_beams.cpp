@@ -31,7 +31,7 @@
 // |                |         |                | (beams: past their extensions; radius_rule.h), 0.1 % leak |        |
 // |                |         |                | near point lights (light_leak.h)                          |        |
 // | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
-// | alpha          | float   | 0.7            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
+// | alpha          | float   | 0.9            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
 // | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
 // | rr_depth       | integer | 5              | photon segments before Russian roulette                   | -      |
