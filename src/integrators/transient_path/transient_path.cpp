@@ -359,8 +359,6 @@ class TransientPathIntegrator : public TransientIntegrator {
     float pdf = 0.0f;
     Color3f f = scatter(ds.d, pdf);
     if (f.isBlack()) return;
-    Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
-    if (c.transmittance.isBlack()) return;
     float weight = ds.delta ? 1.0f : powerHeuristic(1.0f, ds.pdf, 1.0f, pdf);
     Point3f lightPosition;
     if (segmentT < 0.0f && s.crossedMedium && ds.emitter->deltaPosition(lightPosition)) {
@@ -371,6 +369,12 @@ class TransientPathIntegrator : public TransientIntegrator {
     } else if (segmentT >= 0.0f && s.equiangular && ds.emitter->deltaPosition(lightPosition)) {
       weight = freeFlightVertexWeight(s, lightPosition, segmentT);
     }
+    // Weighted before the shadow ray: a heterogeneous medium's free-flight
+    // vertex leaves the point light to the equiangular vertex wherever that
+    // one can sample (weight 0), and its connection is never made.
+    if (!(weight > 0.0f)) return;
+    Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, mediumAfter(ref, ds.d, s.medium), s.surfaceEta, sampler);
+    if (c.transmittance.isBlack()) return;
     recorder.addPulsed(s.opl + c.opl, s.opl + c.opl,
                        s.throughput * f * emitterWeight * c.transmittance * (weight * beforeWindow),
                        ds.emitter->pulse());
