@@ -21,9 +21,9 @@ class Emitter;
 struct PreliminaryHit {
   float t = Infinity;
   const Shape* shape = nullptr;  // the shape hit (of an instanced group: the group's own shape)
-  uint32_t geomId = ~0u, instanceId = ~0u, primIndex = 0;
+  uint32_t instanceId = ~0u;     // the instance hit, ~0u for none
+  uint32_t primIndex = 0;
   Point2f uv;
-  bool isValid() const { return shape != nullptr; }
 };
 
 struct SurfaceInteraction {

@@ -224,13 +224,12 @@ bool EmbreeAccel::intersectPreliminary(const Ray& ray, PreliminaryHit& hit) cons
   RTCRayHit rh = traceNearest(impl_->scene, ray);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
-  hit.geomId = rh.hit.geomID;
   hit.instanceId = rh.hit.instID[0];
   hit.primIndex = rh.hit.primID;
   hit.uv = Point2f(rh.hit.u, rh.hit.v);
   // Embree reports an instance as instID and the group's own geometry as geomID.
-  hit.shape = hit.instanceId == RTC_INVALID_GEOMETRY_ID ? impl_->byGeomId[hit.geomId].shape
-                                                        : (*impl_->byGeomId[hit.instanceId].groupShapes)[hit.geomId];
+  hit.shape = hit.instanceId == RTC_INVALID_GEOMETRY_ID ? impl_->byGeomId[rh.hit.geomID].shape
+                                                        : (*impl_->byGeomId[hit.instanceId].groupShapes)[rh.hit.geomID];
   return true;
 }
 
