@@ -35,6 +35,13 @@ BeamMapOptions mapOptions(const std::vector<Beam>& beams, float radius, const Sc
   return options;
 }
 
+/// The pass's beam map, its options read off the beams before they move in.
+BeamMap passBeamMap(std::vector<Beam>&& beams, float radius, const Scene* scene, double horizon,
+                    const BeamSettings& settings) {
+  const BeamMapOptions options = mapOptions(beams, radius, scene, horizon, settings);
+  return BeamMap(std::move(beams), radius, options);
+}
+
 }  // namespace
 
 BeamPass::BeamPass(const Scene& scene, const BeamSettings& settings, int pass, uint64_t seed, double horizon)
@@ -43,8 +50,7 @@ BeamPass::BeamPass(const Scene& scene, const BeamSettings& settings, int pass, u
 BeamPass::BeamPass(const BeamSettings& settings, int pass, PhotonPass traced, const Scene* scene, double horizon)
     : buildStart_(std::chrono::steady_clock::now()),
       settings_(settings),
-      mapOptions_(mapOptions(traced.beams, settings.beamRadius(pass), scene, horizon, settings)),
-      beams_(std::move(traced.beams), settings.beamRadius(pass), mapOptions_),
+      beams_(passBeamMap(std::move(traced.beams), settings.beamRadius(pass), scene, horizon, settings)),
       photons_(std::move(traced.surfacePhotons), settings.surfaceRadiusOf(pass)),
       maps_{beams_,
             photons_,

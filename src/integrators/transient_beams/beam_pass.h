@@ -49,7 +49,6 @@ class BeamPass final : public TransientIntegrator {
  private:
   std::chrono::steady_clock::time_point buildStart_;  // first member: initialised before the maps are built
   BeamSettings settings_;
-  BeamMapOptions mapOptions_;  // before beams_: computed from the traced beams before they move into the map
   BeamMap beams_;
   SurfacePhotonMap photons_;
   PassMaps maps_;
