@@ -9,8 +9,8 @@
 #include <cstdint>
 
 #include <femto/math/ray.h>
-#include <femto/math/vector.h>
 #include <femto/math/spectrum.h>
+#include <femto/math/vector.h>
 
 namespace femto {
 class Medium;
@@ -21,23 +21,32 @@ namespace femto::beams {
 /// The straight piece of a photon's path between two interactions inside one
 /// medium. Light flows from `origin` along `direction`.
 struct Beam {
-  Point3f origin;                  // where the piece starts (emitter, surface or scattering point)
-  Vec3f direction;                 // unit length, the direction light travels
-  float length = 0.0f;             // > 0 and finite: up to the next surface ("long" beam: the photon may scatter
-                                   // earlier; estimates weight the beam by its transmittance, Jarosz et al. 2011 sec. 5.2)
-                                   // or to where Russian roulette ended it (estimates divide by the survival
-                                   // probability, beam_roulette.h)
-  Color3f power{0.0f};             // photon power (flux) at `origin`, before attenuation along the beam
-  double opl = 0.0;                // OPL at `origin` since emission (emission offset + delays + sum eta*d)
-  float eta = 1.0f;                // refractive index of the medium crossed: OPL per unit length
-  int16_t depth = 1;               // photon path segments up to and including this one (1: straight from the emitter)
-  uint16_t emitter = 0;            // index in Scene::emitters() of the emitter that sent the photon (its pulse)
+  Point3f origin;        // where the piece starts (emitter, surface or scattering point)
+  Vec3f direction;       // unit length, the direction light travels
+  float length = 0.0f;   // > 0 and finite: up to the next surface ("long" beam: the photon may scatter
+                         // earlier; estimates weight the beam by its transmittance, Jarosz et al. 2011 sec. 5.2)
+                         // or to where Russian roulette ended it (estimates divide by the survival
+                         // probability, beam_roulette.h)
+  Color3f power{0.0f};   // photon power (flux) at `origin`, before attenuation along the beam
+  double opl = 0.0;      // OPL at `origin` since emission (emission offset + delays + sum eta*d)
+  float eta = 1.0f;      // refractive index of the medium crossed: OPL per unit length
+  int16_t depth = 1;     // photon path segments up to and including this one (1: straight from the emitter)
+  uint16_t emitter = 0;  // index in Scene::emitters() of the emitter that sent the photon (its pulse)
   const Medium* medium = nullptr;  // the medium the beam crosses (never null for stored beams)
   /// The kernel region's extension before the start and past the end, in
   /// kernel radii, where the beam starts or ends on a boundary of its medium
   /// (boundary_extension.h; 0: none). Estimates there use the density at
   /// the end (T_beam at the clamped parameter).
   float before = 0.0f, after = 0.0f;
+  /// Where the beam entered its medium through a pass-through boundary of
+  /// another index (light changes speed there but not direction, the
+  /// random media family), the wavefront inside is tilted against the beam:
+  /// light reaching x beside it crossed the boundary at another point and
+  /// arrives at opl + eta s(x) + offsetDelay . (x - origin), offsetDelay =
+  /// (eta - eta_before) (n / (n.v) - v) (n: the boundary's normal; ray_beam.cpp,
+  /// docs/photon-beams.md "Timing the extension before a beam's start").
+  /// Zero for every other beam.
+  Vec3f offsetDelay{0.0f};
 };
 
 /// A camera ray's piece inside one medium: `ray.o + t ray.d`, t in [0, tMax],

@@ -187,7 +187,7 @@ uint32_t compact(const std::vector<Node>& sparse, uint32_t at, std::vector<Node>
 void checkBeam(const Beam& beam, size_t index) {
   if (!isFinite(beam.origin) || !isFinite(beam.direction) || !std::isfinite(beam.length) || beam.length < 0.0f ||
       !(beam.before >= 0.0f && beam.before <= MaxBoundaryExtension) ||
-      !(beam.after >= 0.0f && beam.after <= MaxBoundaryExtension))
+      !(beam.after >= 0.0f && beam.after <= MaxBoundaryExtension) || !isFinite(beam.offsetDelay))
     throw Error(str("BeamMap: beam ", index, " has origin ", beam.origin, ", direction ", beam.direction,
                     " and length ", beam.length, "; expected finite values and a length >= 0"));
 }

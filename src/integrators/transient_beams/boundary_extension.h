@@ -46,6 +46,31 @@ inline float boundaryExtension(const Normal3f& n, const Vec3f& d) {
   return c * MaxBoundaryExtension > 1.0f ? 1.0f / c : MaxBoundaryExtension;
 }
 
+/// Beam::offsetDelay of a beam along unit `d` that entered its medium
+/// through a pass-through boundary of normal `n`, where the index rose by
+/// `etaStep` (eta - eta_before): etaStep q, q = n / (n.d) - d (q . (x - b)
+/// is how much farther than s(x) the light reaching x has run in the
+/// medium, for a plane wave through a planar boundary; docs/photon-beams.md,
+/// "Timing the extension before a beam's start"). |q| = tan theta_n, capped
+/// as the extension is (boundaryExtension: 1 / cos theta_n <= M). Zero
+/// where the index does not change.
+inline Vec3f boundaryOffsetDelay(const Normal3f& n, const Vec3f& d, float etaStep) {
+  if (etaStep == 0.0f) return Vec3f(0.0f);
+  const Vec3f& normal = n;
+  const float nd = dot(normal, d), nn = dot(normal, normal);
+  if (!(nn > 0.0f)) return Vec3f(0.0f);
+  Vec3f q = normal * (1.0f / nd) - d;  // nd = 0 (tangent) gives inf: capped below
+  const float maxTan = std::sqrt(MaxBoundaryExtension * MaxBoundaryExtension - 1.0f);
+  const float tan2 = dot(q, q);
+  if (!(tan2 <= maxTan * maxTan)) {
+    // Tangent or beyond the cap: q's direction is the normal's part across d.
+    const Vec3f across = normal - d * nd;
+    const float a = length(across);
+    q = a > 0.0f ? across * (std::copysign(maxTan, nd) / a) : Vec3f(0.0f);
+  }
+  return q * etaStep;
+}
+
 /// Is the medium on the far side of `si`, seen along `across`, the same as
 /// `medium`? Shapes that declare media say so; a shape without media is
 /// transparent to them when it is a pass-through (index-matched) boundary

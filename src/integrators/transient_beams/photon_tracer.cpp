@@ -21,10 +21,10 @@
 namespace femto::beams {
 namespace {
 
-/// Beams name their emitter and depth in 16 bits each (Beam stays 64 bytes).
+/// Beams name their emitter and depth in 16 bits each.
 constexpr size_t MaxEmitters = 65535;
 constexpr int MaxPhotonDepth = 32767;
-static_assert(sizeof(Beam) <= 72, "a beam should stay about a cache line");
+static_assert(sizeof(Beam) <= 88, "a beam should stay under two cache lines");
 /// Photons per parallel work item: outputs are concatenated in item order.
 constexpr uint64_t PhotonsPerBlock = 1024;
 
@@ -99,6 +99,7 @@ struct PhotonTracer::Photon : OpticalPath {
   bool indirect = false;             // scattered, or bounced off a specular surface
   bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
   float startExtension = 0.0f;       // the next beam's Beam::before: it starts on a boundary (boundary_extension.h)
+  Vec3f startOffsetDelay{0.0f};      // the next beam's Beam::offsetDelay (entered through an index change)
 };
 
 void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
@@ -129,9 +130,12 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
     if (!hit || !reachSurface(ph, si)) return;
     if (isPassThrough(si)) {
       const Medium* from = ph.medium;
+      const float etaFrom = ph.eta();
       ph.crossBoundary(si);
       // Entering a medium through its boundary: the next beam starts there.
-      ph.startExtension = ph.medium && ph.medium != from ? boundaryExtension(si.n, ph.ray.d) : 0.0f;
+      const bool entered = ph.medium && ph.medium != from;
+      ph.startExtension = entered ? boundaryExtension(si.n, ph.ray.d) : 0.0f;
+      ph.startOffsetDelay = entered ? boundaryOffsetDelay(si.n, ph.ray.d, ph.eta() - etaFrom) : Vec3f(0.0f);
       ++passThrough;
       continue;
     }
@@ -183,12 +187,14 @@ MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceIntera
       Beam beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium};
       // Ending on a boundary of its medium (not by the roulette): extended past it.
       beam.before = ph.startExtension;
+      beam.offsetDelay = ph.startOffsetDelay;
       if (hit && !(rouletteLength < toSurface) && !sameMediumAcross(si, ph.ray.d, ph.medium))
         beam.after = boundaryExtension(si.n, ph.ray.d);
       beams.push_back(beam);
     }
   }
   ph.startExtension = 0.0f;
+  ph.startOffsetDelay = Vec3f(0.0f);
   MediumSample ms = ph.medium->sampleDistance(ph.ray, hit ? si.t : Infinity, sampler);
   arriving = ph.power;
   ph.power *= ms.weight;
@@ -246,6 +252,7 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   ph.leaveSurface(si, wo, bs.eta);
   // Leaving a boundary of the medium it is now in: the next beam starts there.
   ph.startExtension = ph.medium && !sameMediumAcross(si, -wo, ph.medium) ? boundaryExtension(si.n, wo) : 0.0f;
+  ph.startOffsetDelay = Vec3f(0.0f);  // refraction keeps the wavefront across the beam (phase matching)
   if (bs.sampledFlags & BSDFFlags::Delta)
     ph.indirect = true;
   else

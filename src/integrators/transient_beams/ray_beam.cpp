@@ -128,11 +128,38 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   // up to 32 eta_b r for grazing beams: issue 14's random media seed 2 put
   // energy 5+ bins after the latest arrival at r = 0.083
   // (docs/photon-beams.md, "Timing the extension before a beam's start").
+  // A beam that entered through a pass-through boundary where the index
+  // changed (light changes speed, not direction: the random media family)
+  // has a tilted wavefront: light at x crossed the boundary at another
+  // point and ran lambda(x) = s(x) + q.(x - b) in the medium, arriving at
+  // P(x) = beam.opl + eta_b s(x) + offsetDelay.(x - b) (a plane wave through
+  // a planar boundary, boundary_extension.h). On the extension (the pair's
+  // point before the start) the estimate stands for exactly that light, and
+  // the continuation at eta_b is earlier by (eta_b - eta_before)(|s| +
+  // q.(x - b)) > 0: random media seed 21 put energy a bin before the
+  // earliest arrival. The later of the two is taken: P is linear in t and
+  // the continuation convex, so their maximum is convex and the chord
+  // argument holds; P leaves out the lateral path, and alone it was early
+  // by eta_b u^2 / 2R for a beam entering a sphere of radius R head-on
+  // (camera points at offset u lie before its start there: seed 23 with
+  // r / 4 put energy into the bin before the arrival). On the
+  // beam itself the estimate keeps its own light's time above (the tilt
+  // moves neighbours either way by offsetDelay.(x - b), a blur without a
+  // mean shift). offsetDelay is zero for every other beam.
   const float extension = beam.before * r;
   const Vec3f fromStart = delta + v * extension;  // x(t) - (b - e v) = fromStart + t w
   const double shift = -double(beam.eta) * double(extension);
-  const double oplA = shift + double(segment.eta) * tBegin + double(beam.eta) * startDistance(fromStart, w, tBegin);
-  const double oplB = shift + double(segment.eta) * tEnd + double(beam.eta) * startDistance(fromStart, w, tEnd);
+  const bool tilted = beam.offsetDelay.x != 0.0f || beam.offsetDelay.y != 0.0f || beam.offsetDelay.z != 0.0f;
+  const bool onExtension = tilted && double(s0) + double(tRay) * double(cosTheta) < 0.0;
+  auto opl = [&](float t) {
+    const double continuation = shift + double(beam.eta) * startDistance(fromStart, w, t);
+    if (!onExtension) return double(segment.eta) * t + continuation;
+    const double s = double(s0) + double(t) * double(cosTheta);
+    const double wave =
+        double(beam.eta) * s + double(dot(beam.offsetDelay, delta)) + double(t) * double(dot(beam.offsetDelay, w));
+    return double(segment.eta) * t + std::max(continuation, wave);
+  };
+  const double oplA = opl(tBegin), oplB = opl(tEnd);
   hit.oplBegin = std::min(oplA, oplB);
   hit.oplEnd = std::max(oplA, oplB);
 

@@ -68,8 +68,8 @@ TEST(BoundaryExtension, RestoresTheDensityAtAPlanarWall) {
     // First-order loss of the disc kernel at one end (radius_rule.h): up to
     // 2 r / (3 pi) of the density per unit length, 0.021 here, less for
     // the disc's tilt (45 degrees: 0.015).
-    std::printf("%s: with extension %.4f +- %.4f, without %.4f +- %.4f\n", leaving ? "leaving" : "arriving",
-                with.mean, with.error, without.mean, without.error);
+    std::printf("%s: with extension %.4f +- %.4f, without %.4f +- %.4f\n", leaving ? "leaving" : "arriving", with.mean,
+                with.error, without.mean, without.error);
     EXPECT_NEAR(with.mean, 1.0, 5.0 * with.error) << (leaving ? "leaving" : "arriving");
     EXPECT_LT(without.mean, 1.0 - 5.0 * without.error) << "the loss the extension corrects must show";
   }
@@ -81,6 +81,31 @@ TEST(BoundaryExtension, IsTheInverseCosineUpToItsCap) {
   EXPECT_NEAR(boundaryExtension(n, normalize(Vec3f(1.0f, 0.0f, 1.0f))), std::sqrt(2.0f), 1e-5f);
   EXPECT_FLOAT_EQ(boundaryExtension(n, Vec3f(1.0f, 0.0f, 0.0f)), MaxBoundaryExtension);
   EXPECT_FLOAT_EQ(boundaryExtension(n * 3.0f, Vec3f(0.0f, 0.0f, 1.0f)), 1.0f) << "the normal's length does not matter";
+}
+
+// Light crossing a plane of normal n along d without turning, from index 1
+// into index eta: a point x on the far side at depth lambda(x) = n.(x - b) /
+// (n.d) along d was reached at OPL s(x) + (eta - 1) lambda(x) after b (plane
+// wave). boundaryOffsetDelay must give that as eta s(x) + offsetDelay.(x - b).
+TEST(BoundaryExtension, OffsetDelayIsThePlaneWavesTilt) {
+  PCG32 rng(5, 11);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3f n = normalize(Vec3f(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
+    Vec3f d = normalize(Vec3f(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
+    if (dot(n, d) < 0.0f) d = -d;
+    if (1.0f / dot(n, d) > 0.95f * MaxBoundaryExtension) continue;  // the cap (below)
+    const float eta = 1.0f + rng.nextFloat();
+    const Vec3f delay = boundaryOffsetDelay(n, d, eta - 1.0f);
+    EXPECT_NEAR(dot(delay, d), 0.0f, 1e-4f) << "the tilt lies across the beam";
+    const Vec3f x(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f);  // b = 0
+    const double lambda = double(dot(n, x)) / double(dot(n, d)), s = dot(x, d);
+    EXPECT_NEAR(eta * s + dot(delay, x), s + (eta - 1.0) * lambda, 2e-4 * (1.0 + std::abs(lambda)));
+  }
+  const Vec3f n(0.0f, 0.0f, 1.0f);
+  EXPECT_EQ(length(boundaryOffsetDelay(n, normalize(Vec3f(1.0f, 0.0f, 1.0f)), 0.0f)), 0.0f) << "no index change";
+  const Vec3f grazing = boundaryOffsetDelay(n, Vec3f(1.0f, 0.0f, 0.0f), 0.5f);
+  EXPECT_NEAR(length(grazing), 0.5f * std::sqrt(MaxBoundaryExtension * MaxBoundaryExtension - 1.0f), 1e-3f)
+      << "tan theta_n capped as the extension is";
 }
 
 }  // namespace

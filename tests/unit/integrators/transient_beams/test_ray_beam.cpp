@@ -16,16 +16,18 @@
 
 #include "ray_beam_test_util.h"
 
+#include <transient_beams/boundary_extension.h>
+
 namespace femto::beams {
 namespace {
 
+using test::dotD;
 using test::hitContractHolds;
 using test::makePair;
 using test::marchOverlap;
 using test::Pair;
 using test::PairSpec;
 using test::Rotation;
-using test::dotD;
 using test::toD;
 using test::Vec3d;
 
@@ -387,6 +389,55 @@ TEST(RayBeam, ExtensionBeforeTheStartIsTimedAsTheBeamsContinuation) {
   EXPECT_GE(crossings, 36);
 }
 
+// A beam that entered through a pass-through plane where the index rose
+// from 1 to eta_b (offsetDelay, boundary_extension.h): pairs on its
+// extension are timed no earlier than the plane wave that crossed the plane
+// beside the start, s(x) + (eta_b - 1) lambda(x) at camera point x, and no
+// earlier than the continuation with its lateral path (ray_beam.cpp: the
+// later of the two, at the overlap's ends); the continuation alone at eta_b
+// is (eta_b - 1)(lambda - s) earlier than the wave here, and the test sees
+// it.
+TEST(RayBeam, ExtensionAfterAnIndexChangeIsTimedAsThePlaneWave) {
+  const float r = 0.05f, etaB = 1.45f, etaC = 1.0f;
+  const Vec3f n = normalize(Vec3f(0.9f, 0.0f, 0.3f));  // the boundary through b = 0, grazing entry
+  Beam beam;
+  beam.origin = Point3f(0.0f), beam.direction = Vec3f(0.0f, 0.0f, 1.0f), beam.length = 1.0f, beam.eta = etaB;
+  beam.before = boundaryExtension(n, beam.direction);
+  beam.offsetDelay = boundaryOffsetDelay(n, beam.direction, etaB - 1.0f);
+  auto wave = [&](const Point3f& x) {
+    const double lambda = double(dot(n, x - beam.origin)) / double(dot(n, beam.direction));
+    return double(x.z) + (etaB - 1.0) * lambda;
+  };
+  int onExtension = 0;
+  for (double s = -beam.before * r + 0.1 * r; s < 0.0; s += 0.1 * r)
+    for (double y : {-0.5, 0.0, 0.5}) {
+      // Camera segments along -x at height s, inside the medium (n.x > 0) where they cross the beam.
+      CameraSegment seg;
+      seg.ray = Ray(Point3f(1.0f, float(y * r), float(s)), Vec3f(-1.0f, 0.0f, 0.0f));
+      seg.tMax = 2.0f, seg.eta = etaC;
+      RayBeamHit h;
+      if (!rayBeamIntersect(seg, beam, r, h)) continue;
+      // The overlap reaches into the medium (n.x > 0) where camera segments gather.
+      if (!(dot(n, seg.ray(h.tRayBegin)) > 0.0f)) continue;
+      ++onExtension;
+      const double e = beam.before * r;
+      auto expected = [&](float t) {
+        const Point3f x = seg.ray(t);
+        const double continuation = -etaB * e + etaB * double(length(x - (beam.origin - beam.direction * float(e))));
+        return etaC * t + std::max(wave(x), continuation);
+      };
+      const double a = expected(h.tRayBegin), b = expected(h.tRayEnd);
+      EXPECT_NEAR(h.oplBegin, std::min(a, b), 1e-4) << "s = " << s;
+      EXPECT_NEAR(h.oplEnd, std::max(a, b), 1e-4) << "s = " << s;
+      EXPECT_GE(h.oplBegin,
+                std::min(etaC * h.tRayBegin + wave(seg.ray(h.tRayBegin)), etaC * h.tRayEnd + wave(seg.ray(h.tRayEnd))) -
+                    1e-4);
+      const double continuation = etaC * h.tRay + etaB * s;
+      EXPECT_GT(0.5 * (h.oplBegin + h.oplEnd), continuation) << "the continuation at eta_b is early here";
+    }
+  EXPECT_GE(onExtension, 20);
+}
+
 // --- Causality -------------------------------------------------------------
 
 /// Smallest distance from `q` to the points ray.o + t ray.d, t in [t0, t1].
@@ -441,14 +492,14 @@ TEST(RayBeam, NoEstimateArrivesBeforeLightCould) {
       double projection = 1e30;
       for (double t : {double(h.tRayBegin), double(h.tRayEnd)}) {
         Vec3d x = toD(p.segment.ray.o) + toD(p.segment.ray.d) * t;
-        projection = std::min(projection, double(p.segment.eta) * t +
-                                              double(eta) * std::clamp(dotD(x - toD(p.beam.origin), toD(p.beam.direction)),
-                                                                       0.0, double(p.beam.length)));
+        projection =
+            std::min(projection, double(p.segment.eta) * t +
+                                     double(eta) * std::clamp(dotD(x - toD(p.beam.origin), toD(p.beam.direction)), 0.0,
+                                                              double(p.beam.length)));
       }
       earlyWithoutLateralPath += projection < bound - tol;
     }
-    std::printf("case %d: %d hits, %d would arrive early without the lateral path\n", c, hits,
-                earlyWithoutLateralPath);
+    std::printf("case %d: %d hits, %d would arrive early without the lateral path\n", c, hits, earlyWithoutLateralPath);
     EXPECT_GT(hits, 1000) << "case " << c;
     EXPECT_GT(earlyWithoutLateralPath, 0) << "case " << c << ": the check could not fail";
   }
@@ -530,11 +581,16 @@ TEST(RayBeam, DegenerateInputNeverGivesNonFinite) {
   with("tMax 0", [](Pair& p) { p.segment.tMax = 0; });
   with("negative tMax", [](Pair& p) { p.segment.tMax = -1; });
   with("NaN tMax", [&](Pair& p) { p.segment.tMax = nan; });
-  with("radius 0", [](Pair&) {}, 0.0f);
-  with("negative radius", [](Pair&) {}, -0.05f);
-  with("radius underflowing when squared", [](Pair&) {}, 1e-30f);
-  with("NaN radius", [](Pair&) {}, nan);
-  with("infinite radius", [](Pair&) {}, inf);
+  with(
+      "radius 0", [](Pair&) {}, 0.0f);
+  with(
+      "negative radius", [](Pair&) {}, -0.05f);
+  with(
+      "radius underflowing when squared", [](Pair&) {}, 1e-30f);
+  with(
+      "NaN radius", [](Pair&) {}, nan);
+  with(
+      "infinite radius", [](Pair&) {}, inf);
   with("NaN camera origin", [&](Pair& p) { p.segment.ray.o.x = nan; });
   with("NaN camera direction", [&](Pair& p) { p.segment.ray.d.y = nan; });
   with("zero camera direction", [](Pair& p) { p.segment.ray.d = {0, 0, 0}; });
@@ -577,8 +633,9 @@ TEST(RayBeam, FuzzedPairsKeepTheContract) {
     double scale = std::pow(10.0, 6 * rng.nextDouble() - 3);
     PairSpec s;
     double u = rng.nextDouble();
-    s.theta = u < 0.25 ? std::pow(10.0, -9 * rng.nextDouble()) : u < 0.5 ? DoublePi - std::pow(10.0, -9 * rng.nextDouble())
-                                                                        : DoublePi * rng.nextDouble();
+    s.theta = u < 0.25  ? std::pow(10.0, -9 * rng.nextDouble())
+              : u < 0.5 ? DoublePi - std::pow(10.0, -9 * rng.nextDouble())
+                        : DoublePi * rng.nextDouble();
     s.sClosest = scale * (3 * rng.nextDouble() - 1), s.tClosest = scale * (3 * rng.nextDouble() - 1);
     s.length = scale * rng.nextDouble(), s.tMax = scale * 2 * rng.nextDouble();
     float r = float(scale * std::pow(10.0, -3 * rng.nextDouble()));
