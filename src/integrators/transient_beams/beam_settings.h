@@ -16,6 +16,8 @@
 
 namespace femto::beams {
 
+struct SceneCoverage;  // boundary_coverage.h
+
 /// Which photon segments in media become beams.
 enum class BeamStore {
   Single,  // only photons that have not scattered yet (straight from the emitter, through specular chains): single
@@ -75,7 +77,10 @@ struct BeamSettings : PathDepthSettings {
   ///  * the time radius: a pair's OPL footprint stays within TimeBinFraction
   ///    bins of `grid` (none for steady films);
   ///  * the boundary radius: the kernel's loss where beams end stays below
-  ///    BoundaryBiasTarget of a camera segment's estimate;
+  ///    BoundaryBiasTarget of a camera segment's estimate (the planar
+  ///    model, boundaryRadius, and for beams with `coverage` given also the
+  ///    loss counted on the scene, coveredBoundaryRadius in
+  ///    boundary_coverage.h);
   ///  * the light radius `lightBound` (light_leak.h): the kernel's leak of a
   ///    point light's singular density across the view's edge or its
   ///    medium's boundary stays below LightBiasTarget.
@@ -87,7 +92,8 @@ struct BeamSettings : PathDepthSettings {
   /// count, the probes fixed. `chosen`, if given, receives the four radii.
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                   const TimeGrid& grid, const BoundingBox3f& sceneBounds,
-                                  DerivedRadius* chosen = nullptr, double lightBound = Infinity) const;
+                                  DerivedRadius* chosen = nullptr, double lightBound = Infinity,
+                                  const SceneCoverage* coverage = nullptr) const;
 
   /// When the derived radius is below the density radius (the time or
   /// boundary bound decided) and the scene did not give beam_photon_count:

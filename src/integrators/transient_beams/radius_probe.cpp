@@ -46,15 +46,15 @@ void appendProbes(const Scene& scene, const Point2f& filmPos, double horizon, bo
 
 }  // namespace
 
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime) {
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime, int grid) {
   std::vector<ProbeSegment> probes;
   const Film& film = scene.sensor().film();
   const Point2i offset = film.cropOffset(), size = film.cropSize();
-  for (int j = 0; j < ProbeGrid; ++j)
-    for (int i = 0; i < ProbeGrid; ++i)
+  for (int j = 0; j < grid; ++j)
+    for (int i = 0; i < grid; ++i)
       appendProbes(scene,
-                   Point2f(float(offset.x) + float(size.x) * (float(i) + 0.5f) / ProbeGrid,
-                           float(offset.y) + float(size.y) * (float(j) + 0.5f) / ProbeGrid),
+                   Point2f(float(offset.x) + float(size.x) * (float(i) + 0.5f) / float(grid),
+                           float(offset.y) + float(size.y) * (float(j) + 0.5f) / float(grid)),
                    horizon, observerTime, probes);
   return probes;
 }

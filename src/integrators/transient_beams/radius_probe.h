@@ -16,13 +16,12 @@ class Scene;
 
 namespace femto::beams {
 
-/// Probes through ProbeGrid x ProbeGrid film positions (pixel-cell centres of
-/// the crop window, aperture centre); unbounded pieces end as camera
-/// segments do (unboundedSegmentLength, with `horizon`; camera segments add
-/// no OPL without `observerTime`). Deterministic.
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime);
-
+/// Probes through grid x grid film positions (cell centres of the crop
+/// window, aperture centre); unbounded pieces end as camera segments do
+/// (unboundedSegmentLength, with `horizon`; camera segments add no OPL
+/// without `observerTime`). Deterministic.
 constexpr int ProbeGrid = 8;
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime, int grid = ProbeGrid);
 
 /// Probes through the border of the film's crop window, EdgeProbes + 1 per
 /// side: the view's edge, which the light bound measures its gap to

@@ -74,6 +74,34 @@ double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegm
   return distances[k - 1];
 }
 
+std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
+                                double within) {
+  std::vector<NearPair> pairs;
+  if (probes.empty() || beams.empty()) return pairs;
+  const size_t budget = std::max<size_t>(1, MaxDistancePairs / probes.size());
+  const size_t stride = (beams.size() + budget - 1) / budget;
+  for (const ProbeSegment& p : probes)
+    for (size_t i = 0; i < beams.size(); i += stride) {
+      const Beam& b = beams[i];
+      if (b.medium != p.medium) continue;
+      const double d =
+          segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction, b.length);
+      if (d < within) pairs.push_back({&p, &b, d});
+    }
+  return pairs;
+}
+
+double pairContribution(const NearPair& pair, double r, RayBeamHit* hitOut) {
+  RayBeamHit hit;
+  if (!rayBeamIntersect(pair.probe->segment, *pair.beam, float(r), hit)) return 0.0;
+  const double sigma = pair.beam->medium ? double(pair.beam->medium->majorant().average()) : 0.0;
+  const double w = double(hit.kernel) * double(pair.beam->power.average()) *
+                   std::exp(-sigma * (double(hit.tRay) + double(hit.tBeam)));
+  if (!(w > 0.0) || !std::isfinite(w)) return 0.0;
+  if (hitOut) *hitOut = hit;
+  return w;
+}
+
 double timeRadius(const TimeGrid& grid, double eta) {
   if (!grid.isTransient() || !(grid.binWidth > 0.0) || !(eta > 0.0)) return Infinity;
   // A pair crossing the beam's axis perpendicularly covers a chord 2r, OPL
@@ -81,42 +109,20 @@ double timeRadius(const TimeGrid& grid, double eta) {
   return TimeBinFraction * grid.binWidth / (2.0 * eta);
 }
 
-double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
-                         const TimeGrid& grid, double eta, double upper) {
+double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, const TimeGrid& grid,
+                         double eta, double upper) {
   const double perpendicular = timeRadius(grid, eta);
   const double hi = std::min(upper, perpendicular);
   if (!std::isfinite(hi) || !(hi > 0.0) || probes.empty() || beams.empty()) return perpendicular;
-  // The pairs within hi: every stride-th beam, as densityRadius.
-  const size_t budget = std::max<size_t>(1, MaxDistancePairs / probes.size());
-  const size_t stride = (beams.size() + budget - 1) / budget;
-  struct Pair {
-    const ProbeSegment* probe;
-    const Beam* beam;
-    double distance;
-  };
-  std::vector<Pair> pairs;
-  for (const ProbeSegment& p : probes)
-    for (size_t i = 0; i < beams.size(); i += stride) {
-      const Beam& b = beams[i];
-      if (b.medium != p.medium) continue;
-      const double d =
-          segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction, b.length);
-      if (d < hi) pairs.push_back({&p, &b, d});
-    }
-  // E[W^2] at radius r over the pairs' expected contributions: the kernel
-  // times the beam's power, attenuated at the majorant along the beam and
-  // the probe (exact for homogeneous media; the phase function and sigma_s
-  // are left out, the same for every pair of a medium with an isotropic one).
+  const std::vector<NearPair> pairs = nearPairs(beams, probes, hi);
+  // E[W^2] at radius r over the pairs' expected contributions.
   auto meanSquare = [&](double r) {
     double sum = 0.0, weights = 0.0;
-    for (const Pair& p : pairs) {
+    for (const NearPair& p : pairs) {
       if (!(p.distance < r)) continue;
       RayBeamHit hit;
-      if (!rayBeamIntersect(p.probe->segment, *p.beam, float(r), hit)) continue;
-      const double sigma = p.beam->medium ? double(p.beam->medium->majorant().average()) : 0.0;
-      const double w = double(hit.kernel) * double(p.beam->power.average()) *
-                       std::exp(-sigma * (double(hit.tRay) + double(hit.tBeam)));
-      if (!(w > 0.0) || !std::isfinite(w)) continue;
+      const double w = pairContribution(p, r, &hit);
+      if (!(w > 0.0)) continue;
       const double width = hit.oplEnd - hit.oplBegin;
       sum += w * width * width, weights += w;
     }

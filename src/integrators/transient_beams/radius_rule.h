@@ -21,6 +21,7 @@
 #include <femto/time/time_grid.h>
 #include <transient_beams/beam.h>
 #include <transient_beams/boundary_extension.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 
@@ -53,14 +54,34 @@ double timeRadius(const TimeGrid& grid, double eta);
 /// bound, (2/3) (TimeBinFraction bins)^2. timeRadius when that holds there or
 /// nothing gives pairs (no probes, no beams near them); +Infinity for steady
 /// films. Deterministic.
-double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
-                         const TimeGrid& grid, double eta, double upper);
+double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, const TimeGrid& grid,
+                         double eta, double upper);
 
 /// Largest radius whose boundary loss stays below BoundaryBiasTarget of a
 /// camera segment's estimate, from the probes' mean length in media
 /// (+Infinity without probes); `extended`: beams are extended past
 /// boundaries (boundary_extension.h), which leaves BoundaryLossLeft of the loss.
 double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended = false);
+
+/// A probe segment and a beam of its medium that pass within `distance`.
+struct NearPair {
+  const ProbeSegment* probe;
+  const Beam* beam;
+  double distance;
+};
+
+/// The pairs within `within` among every stride-th beam (stride: at most
+/// MaxDistancePairs distance evaluations in all, as densityRadius).
+/// Deterministic.
+std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double within);
+
+/// A pair's expected contribution at radius r, up to the factors every pair
+/// of a medium shares: the kernel times the beam's power, attenuated at the
+/// majorant along the beam and the probe (exact for homogeneous media; the
+/// phase function and sigma_s are left out, the same for every pair of a
+/// medium with an isotropic one). 0 when they do not meet at r; `hit`, if
+/// given, receives the pair's estimate.
+double pairContribution(const NearPair& pair, double r, RayBeamHit* hit = nullptr);
 
 /// Probe x beam distance evaluations at most (about 20 ms).
 constexpr size_t MaxDistancePairs = 1 << 20;

@@ -60,6 +60,7 @@
 #include <femto/render/transient_integrator.h>
 #include <transient_beams/beam_pass.h>
 #include <transient_beams/beam_settings.h>
+#include <transient_beams/boundary_coverage.h>
 #include <transient_beams/light_leak.h>
 #include <transient_beams/radius_probe.h>
 
@@ -112,8 +113,8 @@ struct PassTotals {
                " map pieces each; time: photons ", traceSeconds, " s, maps ", buildSeconds, " s, camera ",
                cameraSeconds, " s; ", camera.cameraRays, " camera rays, ", camera.segments, " beam queries (",
                double(camera.candidates) / segments, " candidates and ", double(camera.pairHits) / segments,
-               " pair hits each), ", double(camera.piecesCrossed) / segments,
-               " map piece boxes crossed per query, ", camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
+               " pair hits each), ", double(camera.piecesCrossed) / segments, " map piece boxes crossed per query, ",
+               camera.candidates, " ray x beam tests, ", camera.pairHits, " pair hits, ",
                double(camera.candidates) / cameraSeconds, " ray x beam tests/s, ",
                double(camera.pairHits) / cameraSeconds, " pair hits/s, ", double(camera.surfacePhotons) / rays,
                " surface photons per camera ray");
@@ -153,10 +154,12 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
         if (pass == 0 && !(settings.radius > 0.0f)) {
           beams::DerivedRadius derived;
           const auto probes = beams::probeSegments(scene, horizon, settings.observerTime);
+          const beams::SceneCoverage coverage{
+              scene, beams::probeSegments(scene, horizon, settings.observerTime, beams::CoverageProbeGrid)};
           const double light = beams::lightBoundRadius(scene, traced.beams, probes,
                                                        beams::edgeProbeSegments(scene, horizon, settings.observerTime));
-          settings =
-              settings.withBeamRadiusFrom(traced.beams, probes, filmTimeGrid(scene), scene.bbox(), &derived, light);
+          settings = settings.withBeamRadiusFrom(traced.beams, probes, filmTimeGrid(scene), scene.bbox(), &derived,
+                                                 light, &coverage);
           // A radius the film or the boundary made small gets more beams
           // (unless the scene gave their number): pass 0 is traced again.
           const beams::BeamSettings more = settings.withBeamsForRadius(derived);

@@ -61,14 +61,11 @@ std::vector<Mean> coarseSums(const std::vector<std::vector<double>>& perRun, int
   return sums;
 }
 
-}  // namespace
-
-TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
-  const int only = environmentCount("FEMTO_MEDIA_SEED", 0), runs = std::max(2, environmentCount("FEMTO_MEDIA_RUNS", 4));
-  const int first = only > 0 ? only : 1, last = only > 0 ? only : environmentCount("FEMTO_MEDIA_SWEEP", 3);
-  const int passes = environmentCount("FEMTO_MEDIA_PASSES", 2);
+/// One generated scene: beams against path (runs each), the window and
+/// coarse bins, and nothing before the earliest arrival.
+void checkSeed(int seed, int runs, int passes) {
   const char* xmlDir = std::getenv("FEMTO_MEDIA_XML");
-  for (int seed = first; seed <= last; ++seed) {
+  {
     MediaScene m = randomMediaScene(uint64_t(seed));
     const std::string what =
         str("seed ", seed, " (", m.model.bounded ? "sphere" : "unbounded", ", light ", m.lightInside() ? "in" : "out",
@@ -113,4 +110,22 @@ TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
       EXPECT_NEAR(b[k].mean(), p[k].mean(), tolerance) << what << (window ? " window" : str(" coarse bin ", k));
     }
   }
+}
+
+}  // namespace
+
+TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
+  const int only = environmentCount("FEMTO_MEDIA_SEED", 0), runs = std::max(2, environmentCount("FEMTO_MEDIA_RUNS", 4));
+  const int first = only > 0 ? only : 1, last = only > 0 ? only : environmentCount("FEMTO_MEDIA_SWEEP", 3);
+  const int passes = environmentCount("FEMTO_MEDIA_PASSES", 2);
+  for (int seed = first; seed <= last; ++seed) checkSeed(seed, runs, passes);
+}
+
+// Seeds the sweep (tools/bench/random_media_sweep.sh) once failed, kept in
+// CI: 21 (a sphere of eta 1.45 lit from outside: energy before the earliest
+// arrival, the extension timed at the wrong index; ray_beam.cpp) and 23 (a
+// thin sphere lit from outside: -1.9 % at the planar boundary radius, the
+// terminator's loss; boundary_coverage.h).
+TEST(TransientBeamsRandomMedia, SeedsThatOnceFailed) {
+  for (int seed : {21, 23}) checkSeed(seed, 4, 2);
 }
