@@ -11,7 +11,9 @@
 //    blur it adds to the time profile stays below a bin's own (derivation
 //    at the constant);
 //  * boundary bias: the kernel's loss where beams end (medium boundaries,
-//    surfaces in media) stays below 0.4 % of what a camera segment gathers;
+//    surfaces in media) stays below 0.4 % of what a camera segment gathers
+//    (a planar model here, and the loss counted on the scene where the
+//    boundary curves, boundary_coverage.h);
 //  * and a fourth in light_leak.h: the kernel's leak of a point light's
 //    singular near field across the view's edge or its medium's boundary
 //    stays below 0.1 % of the light's single scattering.
