@@ -65,50 +65,48 @@ std::vector<Mean> coarseSums(const std::vector<std::vector<double>>& perRun, int
 /// coarse bins, and nothing before the earliest arrival.
 void checkSeed(int seed, int runs, int passes) {
   const char* xmlDir = std::getenv("FEMTO_MEDIA_XML");
-  {
-    MediaScene m = randomMediaScene(uint64_t(seed));
-    const std::string what =
-        str("seed ", seed, " (", m.model.bounded ? "sphere" : "unbounded", ", light ", m.lightInside() ? "in" : "out",
-            ", camera ", m.cameraInside() ? "in" : "out", ", sigma_t ", m.model.sigmaT, ", eta ", m.model.eta,
-            ", observer time ", m.model.observerTime ? "on" : "off", ")");
-    std::printf("%s\n", what.c_str());
-    MediaScene path = m;
-    path.spp = 64;
-    const std::string beamsXml = m.xml(integratorXml("transient_beams", m, passes));
-    const std::string pathXml = path.xml(integratorXml("transient_path", m, 0));
-    if (xmlDir) {
-      std::ofstream(std::filesystem::path(xmlDir) / str("seed", seed, "-beams.xml")) << beamsXml;
-      std::ofstream(std::filesystem::path(xmlDir) / str("seed", seed, "-path.xml")) << pathXml;
-    }
-    auto beamsScene = loadSceneStrict(beamsXml);
-    auto pathScene = loadSceneStrict(pathXml);
-    const auto beamRuns = imageSumsPerRun(beamsScene, str("random-media-beams-", seed), runs);
-    const auto pathRuns = imageSumsPerRun(pathScene, str("random-media-path-", seed), runs);
-    const std::vector<Mean> b = coarseSums(beamRuns, m.grid.bins, what + " beams");
-    const std::vector<Mean> p = coarseSums(pathRuns, m.grid.bins, what + " path");
-    // Fine-bin means of path for the time-footprint slack.
-    std::vector<double> fine(size_t(m.grid.bins), 0.0);
-    for (const auto& run : pathRuns)
-      for (int k = 0; k < m.grid.bins; ++k) fine[size_t(k)] += run[size_t(k)] / runs;
-    const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
-    // The closed form's window sum too (approximate where the light is in view).
-    double exact = 0.0;
-    for (double v : m.closedFormImageSums(*pathScene, 4000)) exact += v;
-    std::printf("  closed-form window %.5g%s\n", exact, m.target == m.model.light ? " (light in view)" : "");
-    for (size_t k = 0; k < b.size(); ++k) {
-      const bool window = k + 1 == b.size();
-      const int lo = window ? 0 : int(k) * 4, hi = window ? m.grid.bins - 1 : lo + 3;
-      double slack = 0.5 * (fine[size_t(hi)] + (hi + 1 < m.grid.bins ? fine[size_t(hi + 1)] : 0.0));
-      if (!window) slack += 0.5 * (fine[size_t(lo)] + (lo > 0 ? fine[size_t(lo - 1)] : 0.0));
-      const double se =
-          std::sqrt(b[k].standardError() * b[k].standardError() + p[k].standardError() * p[k].standardError());
-      const double tolerance = 5 * se + boundary * std::abs(p[k].mean()) + slack + 1e-9;
-      std::printf("  %s: beams %.5g +- %.2g, path %.5g +- %.2g (beams %+.2f %%), bias bound %.2g, tolerance %.2g %%\n",
-                  window ? "window" : str("coarse bin ", k).c_str(), b[k].mean(), b[k].standardError(), p[k].mean(),
-                  p[k].standardError(), 100 * (b[k].mean() / p[k].mean() - 1), boundary * p[k].mean() + slack,
-                  100 * tolerance / p[k].mean());
-      EXPECT_NEAR(b[k].mean(), p[k].mean(), tolerance) << what << (window ? " window" : str(" coarse bin ", k));
-    }
+  MediaScene m = randomMediaScene(uint64_t(seed));
+  const std::string what =
+      str("seed ", seed, " (", m.model.bounded ? "sphere" : "unbounded", ", light ", m.lightInside() ? "in" : "out",
+          ", camera ", m.cameraInside() ? "in" : "out", ", sigma_t ", m.model.sigmaT, ", eta ", m.model.eta,
+          ", observer time ", m.model.observerTime ? "on" : "off", ")");
+  std::printf("%s\n", what.c_str());
+  MediaScene path = m;
+  path.spp = 64;
+  const std::string beamsXml = m.xml(integratorXml("transient_beams", m, passes));
+  const std::string pathXml = path.xml(integratorXml("transient_path", m, 0));
+  if (xmlDir) {
+    std::ofstream(std::filesystem::path(xmlDir) / str("seed", seed, "-beams.xml")) << beamsXml;
+    std::ofstream(std::filesystem::path(xmlDir) / str("seed", seed, "-path.xml")) << pathXml;
+  }
+  auto beamsScene = loadSceneStrict(beamsXml);
+  auto pathScene = loadSceneStrict(pathXml);
+  const auto beamRuns = imageSumsPerRun(beamsScene, str("random-media-beams-", seed), runs);
+  const auto pathRuns = imageSumsPerRun(pathScene, str("random-media-path-", seed), runs);
+  const std::vector<Mean> b = coarseSums(beamRuns, m.grid.bins, what + " beams");
+  const std::vector<Mean> p = coarseSums(pathRuns, m.grid.bins, what + " path");
+  // Fine-bin means of path for the time-footprint slack.
+  std::vector<double> fine(size_t(m.grid.bins), 0.0);
+  for (const auto& run : pathRuns)
+    for (int k = 0; k < m.grid.bins; ++k) fine[size_t(k)] += run[size_t(k)] / runs;
+  const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
+  // The closed form's window sum too (approximate where the light is in view).
+  double exact = 0.0;
+  for (double v : m.closedFormImageSums(*pathScene, 4000)) exact += v;
+  std::printf("  closed-form window %.5g%s\n", exact, m.target == m.model.light ? " (light in view)" : "");
+  for (size_t k = 0; k < b.size(); ++k) {
+    const bool window = k + 1 == b.size();
+    const int lo = window ? 0 : int(k) * 4, hi = window ? m.grid.bins - 1 : lo + 3;
+    double slack = 0.5 * (fine[size_t(hi)] + (hi + 1 < m.grid.bins ? fine[size_t(hi + 1)] : 0.0));
+    if (!window) slack += 0.5 * (fine[size_t(lo)] + (lo > 0 ? fine[size_t(lo - 1)] : 0.0));
+    const double se =
+        std::sqrt(b[k].standardError() * b[k].standardError() + p[k].standardError() * p[k].standardError());
+    const double tolerance = 5 * se + boundary * std::abs(p[k].mean()) + slack + 1e-9;
+    std::printf("  %s: beams %.5g +- %.2g, path %.5g +- %.2g (beams %+.2f %%), bias bound %.2g, tolerance %.2g %%\n",
+                window ? "window" : str("coarse bin ", k).c_str(), b[k].mean(), b[k].standardError(), p[k].mean(),
+                p[k].standardError(), 100 * (b[k].mean() / p[k].mean() - 1), boundary * p[k].mean() + slack,
+                100 * tolerance / p[k].mean());
+    EXPECT_NEAR(b[k].mean(), p[k].mean(), tolerance) << what << (window ? " window" : str(" coarse bin ", k));
   }
 }
 
