@@ -123,7 +123,10 @@ TEST(TransientBeamsRandomMedia, BeamsAgreeWithPathAndNothingArrivesEarly) {
 // CI: 21 (a sphere of eta 1.45 lit from outside: energy before the earliest
 // arrival, the extension timed at the wrong index; ray_beam.cpp) and 23 (a
 // thin sphere lit from outside: -1.9 % at the planar boundary radius, the
-// terminator's loss; boundary_coverage.h).
+// terminator's loss; boundary_coverage.h). 8 runs of 4 passes: at CI's
+// 4 x 2 seed 23's path runs read 12.35 against the closed form's 12.30 (a
+// heavy-tailed 3-sigma high), which put a -1.31 % beams window on the 1.3 %
+// tolerance's edge; at 8 x 4 beams read -0.44 +- 0.2 % against 1.7 %.
 TEST(TransientBeamsRandomMedia, SeedsThatOnceFailed) {
-  for (int seed : {21, 23}) checkSeed(seed, 4, 2);
+  for (int seed : {21, 23}) checkSeed(seed, 8, 4);
 }
