@@ -36,7 +36,8 @@ struct Beam {
   /// The kernel region's extension before the start and past the end, in
   /// kernel radii, where the beam starts or ends on a boundary of its medium
   /// (boundary_extension.h; 0: none). Estimates there use the density at
-  /// the end (T_beam at the clamped parameter).
+  /// the end (T_beam at the clamped parameter) continued by the beam's
+  /// attenuation (extensionContinuation).
   float before = 0.0f, after = 0.0f;
   /// Where the beam entered its medium through a pass-through boundary of
   /// another index (light changes speed there but not direction, the

@@ -7,8 +7,9 @@
 // end of a camera segment (radius_rule.h). A beam that ends on a boundary
 // is continued straight past it, and a beam that leaves one straight before
 // it, by r / |cos theta_n| (theta_n: its angle to the surface normal), i.e.
-// to depth r behind the boundary, with the density it has at the boundary
-// (T_beam is evaluated at the clamped beam parameter, ray_beam.cpp). Behind
+// to depth r behind the boundary, with the density the beam's attenuation
+// gives there (extensionContinuation below; T_beam at the clamped beam
+// parameter, ray_beam.cpp, times that continuation). Behind
 // a planar boundary the extensions then hold exactly the beams the disc
 // misses, up to the density's gradient: the loss becomes second order.
 // Only camera segments of the beam's medium gather (camera_tracer.cpp), so
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <femto/math/spectrum.h>
 #include <femto/math/vector.h>
 
 namespace femto {
@@ -70,6 +72,20 @@ inline Vec3f boundaryOffsetDelay(const Normal3f& n, const Vec3f& d, float etaSte
   }
   return q * etaStep;
 }
+
+/// The density an extension carries, relative to the beam's at the end it
+/// extends: the beam's own attenuation continued past that end, exp(-sigma_t
+/// beyond) with `beyond` = s - clamp(s, 0, length) (negative before the
+/// start: the density rises back toward the boundary's far side, as the
+/// field the disc misses would). A symmetric kernel then cancels the
+/// density's gradient to first order, as it does inside the medium; held at
+/// the end's value it leaves a loss of order sigma_t r times the share of
+/// the disc behind the boundary where light concentrates at a lit boundary.
+/// Random media seed 21 (sigma_t 1.72, r = 0.06, 6 seeds, against r =
+/// 0.004): -1.11 % held, -0.82 % with the start's continuation alone,
+/// -1.01 % with both ends' (past the exits the density falls). Homogeneous
+/// media only (1 elsewhere: sigma_t beyond the boundary is not known there).
+Color3f extensionContinuation(const Medium& medium, float beyond);
 
 /// Is the medium on the far side of `si`, seen along `across`, the same as
 /// `medium`? Shapes that declare media say so; a shape without media is

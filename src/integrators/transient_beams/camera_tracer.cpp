@@ -13,6 +13,7 @@
 #include <femto/transport/transient_emission.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/beam_roulette.h>
+#include <transient_beams/boundary_extension.h>
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
 #include <transient_beams/ray_point.h>
@@ -175,9 +176,13 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
                     float(double(hit.kernel) * invPhotons * gatherWeight);
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler);
-    if (!points)
+    if (!points) {
       value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler) *
                roulette.inverseSurvival(hit.tBeam);
+      // On an extension (boundary_extension.h) the density continues.
+      if (beam.before > 0.0f || beam.after > 0.0f)
+        value *= extensionContinuation(medium, dot(x - beam.origin, beam.direction) - hit.tBeam);
+    }
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
     recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,

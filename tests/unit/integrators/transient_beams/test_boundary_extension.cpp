@@ -16,6 +16,8 @@
 #include <transient_beams/boundary_extension.h>
 #include <transient_beams/ray_beam.h>
 
+#include "media_test_util.h"
+
 namespace femto::beams {
 namespace {
 
@@ -106,6 +108,27 @@ TEST(BoundaryExtension, OffsetDelayIsThePlaneWavesTilt) {
   const Vec3f grazing = boundaryOffsetDelay(n, Vec3f(1.0f, 0.0f, 0.0f), 0.5f);
   EXPECT_NEAR(length(grazing), 0.5f * std::sqrt(MaxBoundaryExtension * MaxBoundaryExtension - 1.0f), 1e-3f)
       << "tan theta_n capped as the extension is";
+}
+
+// The density an extension carries continues the beam's attenuation past
+// the end it extends: rising before the start, falling past the end, in
+// every channel; media whose sigma_t is not one number keep the end's value.
+TEST(BoundaryExtension, ContinuesTheBeamsAttenuation) {
+  auto fog = test::sceneWithMedium(
+      R"(<medium type="homogeneous" id="m"><rgb name="sigma_t" value="0.5, 1, 2"/><rgb name="albedo" value="0.5"/></medium>)");
+  const Medium& m = *fog->sensor().medium();
+  const Color3f before = extensionContinuation(m, -0.1f), after = extensionContinuation(m, 0.1f);
+  EXPECT_NEAR(before.r, std::exp(0.05f), 1e-6f);
+  EXPECT_NEAR(before.b, std::exp(0.2f), 1e-6f);
+  EXPECT_NEAR(after.g, std::exp(-0.1f), 1e-6f);
+  EXPECT_EQ(extensionContinuation(m, 0.0f).g, 1.0f) << "on the beam itself";
+  const auto dir = test::scratchDir("extension-continuation");
+  test::writeDensityGrid(dir / "density.vol", 3, 1.0f);
+  auto grid = test::sceneWithMedium(R"(<medium type="heterogeneous" id="m">
+    <volume name="sigma_t" type="gridvolume"><string name="filename" value="density.vol"/></volume></medium>)",
+                                    "3.0.0", dir);
+  EXPECT_EQ(extensionContinuation(*grid->sensor().medium(), -0.1f).r, 1.0f) << "heterogeneous: the end's density";
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
