@@ -65,6 +65,9 @@ double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<Probe
 /// boundaries (boundary_extension.h), which leaves BoundaryLossLeft of the loss.
 double boundaryRadius(const std::vector<ProbeSegment>& probes, bool extended = false);
 
+/// Probe x beam distance evaluations at most (about 20 ms).
+constexpr size_t MaxDistancePairs = 1 << 20;
+
 /// A probe segment and a beam of its medium that pass within `distance`.
 struct NearPair {
   const ProbeSegment* probe;
@@ -73,9 +76,10 @@ struct NearPair {
 };
 
 /// The pairs within `within` among every stride-th beam (stride: at most
-/// MaxDistancePairs distance evaluations in all, as densityRadius).
+/// `maxEvaluations` distance evaluations in all, as densityRadius).
 /// Deterministic.
-std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double within);
+std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double within,
+                                size_t maxEvaluations = MaxDistancePairs);
 
 /// A pair's expected contribution at radius r, up to the factors every pair
 /// of a medium shares: the kernel times the beam's power, attenuated at the
@@ -85,8 +89,6 @@ std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vecto
 /// given, receives the pair's estimate.
 double pairContribution(const NearPair& pair, double r, RayBeamHit* hit = nullptr);
 
-/// Probe x beam distance evaluations at most (about 20 ms).
-constexpr size_t MaxDistancePairs = 1 << 20;
 /// A perpendicular pair at lateral offset d spreads its energy uniformly
 /// over an OPL width w = 2 eta sqrt(r^2 - d^2) centred (to second order) on
 /// the arrival through the beam's axis. Averaged over d in [-r, r] that is a

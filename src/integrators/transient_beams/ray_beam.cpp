@@ -102,6 +102,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tRayBegin = tBegin;
   hit.tRayEnd = tEnd;
   hit.tRay = tRay;
+  hit.oneD = oneD;
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
   hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 

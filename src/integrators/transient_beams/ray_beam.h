@@ -78,6 +78,10 @@ struct RayBeamHit {
   double oplBegin = 0.0, oplEnd = 0.0;
   /// The overlap on the camera segment: 0 <= tRayBegin < tRayEnd <= tMax.
   float tRayBegin = 0.0f, tRayEnd = 0.0f;
+  /// The 1D kernel weighs the pair (OneD, the whole chord fits): the
+  /// estimate gathers the beams at offsets along w x v from ray(tRay), not
+  /// over the disc across the beam (boundary_coverage.h counts either).
+  bool oneD = false;
 };
 
 /// The beam map's cull (BeamMap::Cull::Lines): true only when the segment's
