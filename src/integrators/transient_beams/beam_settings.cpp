@@ -109,13 +109,15 @@ double spreadRadius(const std::vector<Beam>& beams, bool points, const BoundingB
 
 BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                               const TimeGrid& grid, const BoundingBox3f& sceneBounds,
-                                              DerivedRadius* chosen, double lightBound,
-                                              const SceneCoverage* coverage) const {
+                                              DerivedRadius* chosen, double lightBound, const SceneCoverage* coverage,
+                                              const DerivedRadius* sizedFor) const {
   BeamSettings s = *this;
   if (s.radius > 0.0f) return s;
   DerivedRadius d;
   const bool points = volumeEstimator == VolumeEstimator::Points;
-  d.density = probes.empty() ? spreadRadius(beams, points, sceneBounds) : densityRadius(beams, probes, TargetPairHits);
+  d.density = sizedFor         ? sizedFor->density
+              : probes.empty() ? spreadRadius(beams, points, sceneBounds)
+                               : densityRadius(beams, probes, TargetPairHits);
   // The time bound at the largest index a pair's OPL can run at.
   double eta = 0.0;
   for (const ProbeSegment& p : probes) eta = std::max(eta, double(p.segment.eta));

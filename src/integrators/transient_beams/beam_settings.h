@@ -90,10 +90,15 @@ struct BeamSettings : PathDepthSettings {
   /// r = sqrt(H V^(2/3) / (pi P)); at most 1 % of the scene's diagonal).
   /// Deterministic: the beams are the same for a given seed on any thread
   /// count, the probes fixed. `chosen`, if given, receives the four radii.
+  /// `sizedFor`: the derivation these beams were traced for
+  /// (withBeamsForRadius gave more beams for its radius): its density bound
+  /// is kept, the rest derived again on these beams (the counted boundary
+  /// loss on as many more pairs).
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                   const TimeGrid& grid, const BoundingBox3f& sceneBounds,
                                   DerivedRadius* chosen = nullptr, double lightBound = Infinity,
-                                  const SceneCoverage* coverage = nullptr) const;
+                                  const SceneCoverage* coverage = nullptr,
+                                  const DerivedRadius* sizedFor = nullptr) const;
 
   /// When the derived radius is below the density radius (the time or
   /// boundary bound decided) and the scene did not give beam_photon_count:

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include <femto/render/scene.h>
 #include <femto/math/pcg32.h>
+#include <femto/render/scene.h>
 #include <transient_beams/photon_tracer.h>
 #include <transient_beams/ray_beam.h>
 
@@ -33,7 +33,8 @@ const float Eta = 1.33f, Delay = 0.5f;
 std::shared_ptr<Scene> litMedium() {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <medium id="m" type="homogeneous"><float name="sigma_t" value="0.8"/><float name="albedo" value="0.9"/>
-    <float name="eta" value=")", Eta, R"("/><phase type="isotropic"><float name="delay" value=")", Delay, R"("/></phase>
+    <float name="eta" value=")",
+                             Eta, R"("/><phase type="isotropic"><float name="delay" value=")", Delay, R"("/></phase>
   </medium>
   <sensor type="perspective"><ref id="m"/></sensor>
   <emitter type="point"><point name="position" x="0.8" y="0" z="1"/><float name="intensity" value="2"/></emitter>
@@ -133,7 +134,8 @@ TEST(TransientBeamsPhotons, GlassDelaysPhotonsByItsIndexAlongTheRefractedPath) {
   auto scene = loadSceneStrict(str(R"(<scene version="3.0.0">
   <emitter type="point"><point name="position" x="0" y="0" z="0"/><float name="intensity" value="1"/></emitter>
   <shape type="cube">
-    <transform name="to_world"><scale x="20" y="20" z=")", h / 2, R"("/><translate z=")", 1 + h / 2, R"("/></transform>
+    <transform name="to_world"><scale x="20" y="20" z=")",
+                                   h / 2, R"("/><translate z=")", 1 + h / 2, R"("/></transform>
     <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf>
   </shape>
   <shape type="rectangle">
@@ -189,7 +191,8 @@ TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
   ASSERT_EQ(a.surfacePhotons.size(), b.surfacePhotons.size());
   ASSERT_GT(a.surfacePhotons.size(), 1000u);
   for (size_t i = 0; i < a.surfacePhotons.size(); ++i)
-    ASSERT_TRUE(a.surfacePhotons[i].p == b.surfacePhotons[i].p && a.surfacePhotons[i].power == b.surfacePhotons[i].power)
+    ASSERT_TRUE(a.surfacePhotons[i].p == b.surfacePhotons[i].p &&
+                a.surfacePhotons[i].power == b.surfacePhotons[i].power)
         << "surface photon " << i;
 }
 
@@ -248,6 +251,17 @@ TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   // 64 probes x 25 pairs: the count is known to ~ +-10 % (their spread of lengths inside the cube).
   EXPECT_GT(perSegment, 0.7 * BeamSettings::TargetPairHits);
   EXPECT_LT(perSegment, 1.3 * BeamSettings::TargetPairHits);
+  // Beams traced for a derivation (withBeamsForRadius) keep its density
+  // bound: twice the beams would halve the radius that meets the target.
+  femto::beams::DerivedRadius sized = derived, again;
+  sized.density = 0.5 * derived.density;
+  std::vector<Beam> twice = beams;
+  twice.insert(twice.end(), beams.begin(), beams.end());
+  s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again, Infinity,
+                       nullptr, &sized);
+  EXPECT_EQ(again.density, sized.density);
+  s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again);
+  EXPECT_LT(again.density, 0.75 * derived.density) << "derived anew, the density bound follows the beams";
   // A given radius is kept; no beams and no probes fall back to the scene's scale.
   s.radius = 0.125f;
   EXPECT_EQ(s.withBeamRadiusFrom(beams, probes, TimeGrid{}, BoundingBox3f()).radius, 0.125f);
