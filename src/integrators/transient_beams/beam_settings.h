@@ -91,9 +91,10 @@ struct BeamSettings : PathDepthSettings {
   /// Deterministic: the beams are the same for a given seed on any thread
   /// count, the probes fixed. `chosen`, if given, receives the four radii.
   /// `sizedFor`: the derivation these beams were traced for
-  /// (withBeamsForRadius gave more beams for its radius): its density bound
-  /// is kept, the rest derived again on these beams (the counted boundary
-  /// loss on as many more pairs).
+  /// (withBeamsForRadius gave more beams for its radius): its density and
+  /// oblique time bounds are kept (the latter derived again only if the
+  /// boundary now allows more than its cap) and the boundary loss is
+  /// counted again, on as many more pairs.
   BeamSettings withBeamRadiusFrom(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes,
                                   const TimeGrid& grid, const BoundingBox3f& sceneBounds,
                                   DerivedRadius* chosen = nullptr, double lightBound = Infinity,

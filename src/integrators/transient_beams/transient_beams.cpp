@@ -166,17 +166,14 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           if (more.beamPhotons() != settings.beamPhotons()) {
             settings = more;
             traced = beams::tracePhotonPass(scene, settings, seed, horizon);
-            // The bounds that depend on the beams are derived again on the
-            // new ones: the boundary loss counted on few beams' pairs was
-            // noise where the radius is small (random media seed 36, 10000
-            // beam photons: 0.009-0.035 between photon seeds).
+            // The boundary loss is counted again on the new beams: counted
+            // on few beams' pairs it was noise where the radius is small
+            // (random media seed 36, 10000 beam photons: 0.009-0.035
+            // between photon seeds).
             const beams::DerivedRadius sized = derived;
             settings.radius = 0.0f;
-            settings = settings.withBeamRadiusFrom(
-                traced.beams, probes, filmTimeGrid(scene), scene.bbox(), &derived,
-                beams::lightBoundRadius(scene, traced.beams, probes,
-                                        beams::edgeProbeSegments(scene, horizon, settings.observerTime)),
-                &coverage, &sized);
+            settings = settings.withBeamRadiusFrom(traced.beams, probes, filmTimeGrid(scene), scene.bbox(), &derived,
+                                                   sized.light, &coverage, &sized);
           }
           logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
                   derived.time, ", boundary ", derived.boundary, ", light ", derived.light, "), ",

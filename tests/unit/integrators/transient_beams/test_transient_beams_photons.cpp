@@ -260,6 +260,16 @@ TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again, Infinity,
                        nullptr, &sized);
   EXPECT_EQ(again.density, sized.density);
+  // Its time bound too, unless the boundary now allows more than its cap
+  // (a steady film: derived anew, the time bound is +Infinity).
+  sized.time = 0.01;
+  s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again, Infinity,
+                       nullptr, &sized);
+  EXPECT_EQ(again.time, 0.01);
+  sized.boundary = 1e-3 * sized.density;
+  s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again, Infinity,
+                       nullptr, &sized);
+  EXPECT_FALSE(std::isfinite(again.time)) << "the cap was lifted: derived anew";
   s.withBeamRadiusFrom(twice, probes, TimeGrid{}, BoundingBox3f(Point3f(0.0f), Point3f(2.0f)), &again);
   EXPECT_LT(again.density, 0.75 * derived.density) << "derived anew, the density bound follows the beams";
   // A given radius is kept; no beams and no probes fall back to the scene's scale.
