@@ -92,7 +92,9 @@ void checkSeed(int seed, int runs, int passes) {
   const double boundary = m.model.bounded ? beams::BoundaryBiasTarget : 0.0;
   // The closed form's window sum too (approximate where the light is in view).
   double exact = 0.0;
-  for (double v : m.closedFormImageSums(*pathScene, 4000)) exact += v;
+  for (double v : m.closedFormImageSums(*pathScene, environmentCount("FEMTO_MEDIA_CF_STEPS", 4000),
+                                        environmentCount("FEMTO_MEDIA_CF_SUBPIXELS", 4)))
+    exact += v;
   std::printf("  closed-form window %.5g%s\n", exact, m.target == m.model.light ? " (light in view)" : "");
   for (size_t k = 0; k < b.size(); ++k) {
     const bool window = k + 1 == b.size();
