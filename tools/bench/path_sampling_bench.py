@@ -189,7 +189,8 @@ def table_heterogeneous(args, out_dir):
     print("The fog box with its fog as a heterogeneous medium (a 16³ grid of densities 0.3–1 times 0.8, albedo 0.8). "
           "48×48, 128 spp, 512 bins, max_depth 8; MSE from independent seed pairs, medians over "
           f"{args.seeds} pairs. There the equiangular vertex takes every distance it can sample and the free-flight "
-          "vertex the rest (docs/media.md); light-directed vertices stop at heterogeneous media. "
+          "vertex the rest (docs/media.md); a light-directed vertex takes the first heterogeneous segment of its ray "
+          "and shares those distances with the equiangular vertex. "
           "Efficiency = 1 / (MSE × CPU), relative to free flights.\n")
     print("| distance sampling | CPU s | MSE | MSE × CPU | efficiency |")
     print("|---|---|---|---|---|")

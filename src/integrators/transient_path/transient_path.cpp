@@ -508,9 +508,10 @@ class TransientPathIntegrator : public TransientIntegrator {
   }
 
   /// A free flight crossed the medium segment [0, tMax] of s.ray without
-  /// scattering: light-directed vertices follow straight rays through
-  /// homogeneous media only (their transmittance is exact there), so a
-  /// heterogeneous segment ends their reach; a homogeneous one multiplies the
+  /// scattering: light-directed vertices follow straight rays past
+  /// homogeneous segments only (free flights' probability of crossing them
+  /// is exact there), so a heterogeneous segment is the last they sample a
+  /// vertex on and ends their reach; a homogeneous one multiplies the
   /// probability of getting this far (homogeneous.cpp: the average over
   /// channels of the transmittance).
   void passSegment(PathState& s, float tMax, Sampler& sampler) const {
@@ -575,8 +576,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// scattering vertex `ref` (a surface, or a medium point with zero normal)
   /// a direction w around a point light (transport/point_directions.h), then,
   /// along the straight ray in w through index-matched boundaries, one
-  /// equiangular vertex per homogeneous-medium segment, as the path's own
-  /// segments get (lightDirectedVertex).
+  /// equiangular vertex per medium segment up to the first heterogeneous one,
+  /// as the path's own segments get (lightDirectedVertex).
   template <typename ScatterFn>
   void nextEventLightDirected(const Scene& scene, const PathState& s, const SurfaceInteraction& ref, Sampler& sampler,
                               RadianceRecorder& recorder, ScatterFn&& scatter) const {
@@ -599,7 +600,6 @@ class TransientPathIntegrator : public TransientIntegrator {
     Point3f start = ref.p;
     double opl = s.opl;
     for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
-      if (medium && !medium->isHomogeneous()) return;
       SurfaceInteraction hit;
       bool hitSurface = scene.rayIntersect(ray, hit);
       float tMax = hitSurface ? hit.t : Infinity;
@@ -607,6 +607,10 @@ class TransientPathIntegrator : public TransientIntegrator {
         GatedSegment gated = gatedSegment(s.gate, s.lights, ray, start, tMax, *medium, opl);
         lightDirectedVertex(scene, s, l, ray, tMax, *medium, opl, gated, crossing == 0 ? uDistance : sampler.next1D(),
                             sampler, recorder);
+        // Past a heterogeneous segment the path's own free flights arrive
+        // with a probability that has no closed form (passSegment): the
+        // straight ray ends there, for both strategies.
+        if (!medium->isHomogeneous()) return;
         Color3f tr = medium->transmittance(ray, tMax, sampler);
         l.weight *= tr;
         // The path's own free flights end within a truncated segment (sampleFreeFlight).
@@ -668,9 +672,12 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (fx.isBlack()) return;
     Connection c = connect(scene, x, ds.d, ds.p, ds.dist, &medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    // Densities of the three strategies for this vertex, divided by the common p_eq(t) / t^2.
+    // Densities of the three strategies for this vertex, divided by the common
+    // p_eq(t) / t^2. In a heterogeneous medium the free-flight vertex takes
+    // no distance an equiangular one can sample (freeFlightVertexWeight).
     float own = l.vertexPdf * l.passProbability;
-    float weight = powerHeuristic(l.lightPdf, own, own * gated.pdf(tMax, t, medium.freeFlightPdf(t)) / pdf);
+    float freeFlight = medium.isHomogeneous() ? own * gated.pdf(tMax, t, medium.freeFlightPdf(t)) / pdf : 0.0f;
+    float weight = powerHeuristic(l.lightPdf, own, freeFlight);
     recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
                        l.emitter->pulse());
   }
@@ -743,9 +750,11 @@ class TransientPathIntegrator : public TransientIntegrator {
     if (f.isBlack()) return;
     Connection c = connect(scene, ref, ds.d, ds.p, ds.dist, s.medium, s.surfaceEta, sampler);
     if (c.transmittance.isBlack()) return;
-    float weight = s.medium->isHomogeneous()
-                       ? powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition))
-                       : 1.0f;  // heterogeneous: the distances it samples are its own (freeFlightVertexWeight)
+    // Heterogeneous: the distances it samples are its own against free
+    // flights (freeFlightVertexWeight), shared only with the light-directed
+    // vertex, whose distance density along the same segment is the same.
+    float weight = powerHeuristic(pdf, s.medium->isHomogeneous() ? freeFlightPdf(s, t) : 0.0f,
+                                  pdf * lightDirectedRatio(s, lightPosition));
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
   }
@@ -759,8 +768,9 @@ class TransientPathIntegrator : public TransientIntegrator {
   /// takes every distance it can sample (its weight is 1) and the free-flight
   /// vertex the others (weight 1 where p_eq(t) = 0, else 0), a partition of
   /// unity (Veach 1997, sec. 9.2.2, the cutoff heuristic at cutoff 0), so the
-  /// sum stays unbiased; light-directed vertices stop at heterogeneous media
-  /// (nextEventLightDirected), so they take no part.
+  /// sum stays unbiased; the light-directed vertex samples the same distances
+  /// as the equiangular one (the same segment's equiangular density) and
+  /// shares them with it by the direction densities alone.
   float freeFlightVertexWeight(const PathState& s, const Point3f& c, float t) const {
     float equiangular = pdfEquiangular(equiangularToward(s, c), t);
     if (!s.medium->isHomogeneous()) return equiangular > 0.0f ? 0.0f : 1.0f;

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -16,6 +17,7 @@
 
 #include "media_test_util.h"
 #include "plugin_util.h"
+#include "render_test_util.h"
 #include "transient_test_util.h"
 #include "window_estimate.h"
 
@@ -206,4 +208,57 @@ TEST(TransientPathLightDirections, DoubleScatteringBesideTheLightAgreesWithoutTh
   WindowEstimate with = estimateWindow(*scene(true), grid, n, 700, rays);
   WindowEstimate without = estimateWindow(*scene(false), grid, n, 800, rays);
   expectBinsAgree(with, without);
+}
+
+TEST(TransientPathLightDirections, DoubleScatteringInHeterogeneousFogAgreesWithoutThem) {
+  // The same in a grid fog around the camera (a cube of it, index-matched):
+  // the light-directed vertex takes the first heterogeneous segment of its
+  // ray (ratio tracking's transmittance to it) and shares its distances with
+  // the path's own equiangular vertex by the direction densities alone (free
+  // flights take none of them there). Either weight left at 1 counts that
+  // share twice (+4 % over the window). Gated, in a late window, against
+  // the same without gating: the light-directed and equiangular vertices
+  // sample the same window-restricted distances. (Not against the paths
+  // without light-directed vertices there: their heavy tail, the fireflies
+  // these vertices remove, read 3.9 standard errors low on one seed pair
+  // where 4 x 400000 paths agree within 0.2 %.)
+  auto dir = scratchDir("light-directions-grid");
+  writeDensityGrid(dir / "density.vol", 6, 2.0f);
+  auto scene = [&](bool lightDirections, bool gating) {
+    return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="3"/>
+    <boolean name="light_directions" value=")",
+                               lightDirections ? "true" : "false", R"("/>
+    <boolean name="time_gating" value=")",
+                               gating ? "true" : "false", R"("/></integrator>
+  <medium id="m" type="heterogeneous"><volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
+                               (dir / "density.vol").string(), R"("/></volume>
+    <float name="scale" value="0.7"/><rgb name="albedo" value="0.8, 0.75, 0.7"/></medium>
+  <shape type="cube"><transform name="to_world"><scale value="2"/></transform><ref name="interior" id="m"/></shape>
+  <sensor type="perspective"><ref id="m"/></sensor>
+  <emitter type="point"><point name="position" x="0.45" y="0.02" z="1"/><float name="intensity" value="2"/></emitter>
+</scene>)"));
+  };
+  auto rays = [](PCG32& rng) {
+    Vec3f target((rng.nextFloat() - 0.5f) * 0.4f, (rng.nextFloat() - 0.5f) * 0.4f, 1.0f);
+    return Ray(Point3f(0.0f), normalize(target));
+  };
+  const int n = 200000;
+  {
+    SCOPED_TRACE("with and without them");
+    const TimeGrid grid{1.0, 0.5, 8};
+    WindowEstimate with = estimateWindow(*scene(true, false), grid, n, 1300, rays);
+    WindowEstimate without = estimateWindow(*scene(false, false), grid, n, 1400, rays);
+    ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(with, without);
+  }
+  {
+    SCOPED_TRACE("gated and not, with them");
+    const TimeGrid grid{2.5, 0.25, 4};
+    WindowEstimate gated = estimateWindow(*scene(true, true), grid, n, 1500, rays);
+    WindowEstimate plain = estimateWindow(*scene(true, false), grid, n, 1600, rays);
+    ASSERT_GT(plain.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(gated, plain);
+  }
+  std::filesystem::remove_all(dir);
 }
