@@ -228,6 +228,21 @@ def grid_fog_beside_the_light(out_dir):
     return os.path.join(scene_dir, "scene.xml")
 
 
+def strategy_table(args, out_dir, scene, defines):
+    """Free flights, + equiangular, + light-directed vertices on `scene`
+    (`defines` maps each row's integrator parameters to the render's)."""
+    print("| distance sampling | CPU s | MSE | MSE × CPU | efficiency |")
+    print("|---|---|---|---|---|")
+    base = None
+    for name, params in [("free flights", dict(equiangular="false")),
+                         ("free flights + equiangular", dict(light_directions="false")),
+                         ("free flights + equiangular + light-directed (default)", {})]:
+        _, e, _, cpu = measure_pairs(scene, defines(params), args.seeds, out_dir, args.threads)
+        base = base or e * cpu
+        print(f"| {name} | {cpu:.2f} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} |")
+    print()
+
+
 def table_heterogeneous(args, out_dir):
     print("### (c) Equiangular next-event vertices in a heterogeneous medium (fog Cornell box)\n")
     print("The fog box with its fog as a heterogeneous medium (a 16³ grid of densities 0.3–1 times 0.8, albedo 0.8). "
@@ -236,31 +251,11 @@ def table_heterogeneous(args, out_dir):
           "vertex the rest (docs/media.md); a light-directed vertex takes the first heterogeneous segment of its ray "
           "and shares those distances with the equiangular vertex. "
           "Efficiency = 1 / (MSE × CPU), relative to free flights.\n")
-    print("| distance sampling | CPU s | MSE | MSE × CPU | efficiency |")
-    print("|---|---|---|---|---|")
-    scene = heterogeneous_fog_box(out_dir)
-    base = None
-    for name, params in [("free flights", dict(equiangular="false")),
-                         ("free flights + equiangular", dict(light_directions="false")),
-                         ("free flights + equiangular + light-directed (default)", {})]:
-        _, e, _, cpu = measure_pairs(scene, fog_defines(medium="hetero", **params), args.seeds, out_dir, args.threads)
-        base = base or e * cpu
-        print(f"| {name} | {cpu:.2f} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} |")
-    print()
+    strategy_table(args, out_dir, heterogeneous_fog_box(out_dir), lambda params: fog_defines(medium="hetero", **params))
     print("The same three on double scattering in a grid fog around the camera with a point light just beside the "
           "view (the scene of the CI test TransientPathLightDirections.DoubleScatteringInHeterogeneousFogAgreesWith"
           "outThem; 32×32, 256 spp, 64 bins, max_depth 3), where paths' own directions pass close to the light.\n")
-    print("| distance sampling | CPU s | MSE | MSE × CPU | efficiency |")
-    print("|---|---|---|---|---|")
-    scene = grid_fog_beside_the_light(out_dir)
-    base = None
-    for name, params in [("free flights", dict(equiangular="false")),
-                         ("free flights + equiangular", dict(light_directions="false")),
-                         ("free flights + equiangular + light-directed (default)", {})]:
-        _, e, _, cpu = measure_pairs(scene, params, args.seeds, out_dir, args.threads)
-        base = base or e * cpu
-        print(f"| {name} | {cpu:.2f} | {e:.3g} | {e * cpu:.3g} | {base / (e * cpu):.2f} |")
-    print()
+    strategy_table(args, out_dir, grid_fog_beside_the_light(out_dir), lambda params: params)
 
 
 def table_late_window(args, out_dir):

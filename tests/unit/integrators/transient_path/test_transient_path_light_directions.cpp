@@ -36,13 +36,16 @@ struct FogCube {
 /// from outside: camera paths cross the boundary, scatter on the floor and in
 /// the fog. With the floor below the cube, rays from the floor cross a vacuum
 /// gap and the boundary before the fog (light-directed vertices follow them).
+std::string integratorXml(int maxDepth, bool lightDirections, bool gating) {
+  return str(R"(<integrator type="transient_path"><integer name="max_depth" value=")", maxDepth,
+             R"("/><boolean name="light_directions" value=")", lightDirections ? "true" : "false",
+             R"("/><boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>)");
+}
+
 std::shared_ptr<Scene> fogCube(const FogCube& c, bool lightDirections, bool gating) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
-  <integrator type="transient_path"><integer name="max_depth" value="6"/>
-    <boolean name="light_directions" value=")",
-                             lightDirections ? "true" : "false", R"("/>
-    <boolean name="time_gating" value=")",
-                             gating ? "true" : "false", R"("/></integrator>
+  )",
+                             integratorXml(6, lightDirections, gating), R"(
   <medium id="fog" type="homogeneous"><rgb name="sigma_t" value=")",
                              c.sigmaT, R"("/>
     <rgb name="albedo" value=")",
@@ -226,11 +229,8 @@ TEST(TransientPathLightDirections, DoubleScatteringInHeterogeneousFogAgreesWitho
   writeDensityGrid(dir / "density.vol", 6, 2.0f);
   auto scene = [&](bool lightDirections, bool gating) {
     return loadSceneStrict(str(R"(<scene version="3.0.0">
-  <integrator type="transient_path"><integer name="max_depth" value="3"/>
-    <boolean name="light_directions" value=")",
-                               lightDirections ? "true" : "false", R"("/>
-    <boolean name="time_gating" value=")",
-                               gating ? "true" : "false", R"("/></integrator>
+  )",
+                               integratorXml(3, lightDirections, gating), R"(
   <medium id="m" type="heterogeneous"><volume name="sigma_t" type="gridvolume"><string name="filename" value=")",
                                (dir / "density.vol").string(), R"("/></volume>
     <float name="scale" value="0.7"/><rgb name="albedo" value="0.8, 0.75, 0.7"/></medium>
@@ -243,22 +243,20 @@ TEST(TransientPathLightDirections, DoubleScatteringInHeterogeneousFogAgreesWitho
     Vec3f target((rng.nextFloat() - 0.5f) * 0.4f, (rng.nextFloat() - 0.5f) * 0.4f, 1.0f);
     return Ray(Point3f(0.0f), normalize(target));
   };
-  const int n = 200000;
+  // Scene a against scene b (the reference) over `grid`, 200000 paths each.
+  auto expectAgree = [&](const Scene& a, const Scene& b, const TimeGrid& grid, uint64_t seed) {
+    WindowEstimate ea = estimateWindow(a, grid, 200000, seed, rays);
+    WindowEstimate eb = estimateWindow(b, grid, 200000, seed + 100, rays);
+    ASSERT_GT(eb.total.mean(), 0.0) << "the window holds light: the test compares something";
+    expectBinsAgree(ea, eb);
+  };
   {
     SCOPED_TRACE("with and without them");
-    const TimeGrid grid{1.0, 0.5, 8};
-    WindowEstimate with = estimateWindow(*scene(true, false), grid, n, 1300, rays);
-    WindowEstimate without = estimateWindow(*scene(false, false), grid, n, 1400, rays);
-    ASSERT_GT(without.total.mean(), 0.0) << "the window holds light: the test compares something";
-    expectBinsAgree(with, without);
+    expectAgree(*scene(true, false), *scene(false, false), TimeGrid{1.0, 0.5, 8}, 1300);
   }
   {
     SCOPED_TRACE("gated and not, with them");
-    const TimeGrid grid{2.5, 0.25, 4};
-    WindowEstimate gated = estimateWindow(*scene(true, true), grid, n, 1500, rays);
-    WindowEstimate plain = estimateWindow(*scene(true, false), grid, n, 1600, rays);
-    ASSERT_GT(plain.total.mean(), 0.0) << "the window holds light: the test compares something";
-    expectBinsAgree(gated, plain);
+    expectAgree(*scene(true, true), *scene(true, false), TimeGrid{2.5, 0.25, 4}, 1500);
   }
   std::filesystem::remove_all(dir);
 }
