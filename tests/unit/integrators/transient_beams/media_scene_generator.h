@@ -36,6 +36,20 @@ struct MediaScene {
   bool cameraInside() const { return !model.bounded || distance(camera, model.center) < model.radius; }
   bool lightInside() const { return !model.bounded || distance(model.light, model.center) < model.radius; }
 
+  /// Does the light project into the film, or within `marginPixels` of its
+  /// edge (the square film's frustum, fov across it)? There the closed form's
+  /// pixel holding it, ~1/h at distance h from the light, is only
+  /// approximated by its sub-rays (closedFormImageSums).
+  bool lightNearTheView(double marginPixels) const {
+    const Vec3f forward = normalize(target - camera);
+    const Vec3f right = normalize(cross(Vec3f(0.0f, 1.0f, 0.0f), forward)), up = cross(forward, right);
+    const Vec3f toLight = model.light - camera;
+    const double z = dot(toLight, forward);
+    if (!(z > 0.0)) return false;
+    const double half = std::tan(0.5 * double(fov) * Pi / 180.0) * (1.0 + 2.0 * marginPixels / resolution);
+    return std::abs(dot(toLight, right)) < half * z && std::abs(dot(toLight, up)) < half * z;
+  }
+
   /// A lower bound of every light path's OPL to the camera. Observer time
   /// on: camera and light both in the (convex) medium: eta |camera - light|
   /// (camera -> x -> light stays inside); else |camera - light| (eta >= 1).
@@ -74,8 +88,8 @@ struct MediaScene {
     const std::string inMedium = R"(<ref id="m"/>)";
     return str(R"(<scene version="3.0.0">)", integrator, medium, boundary,
                R"(<sensor type="perspective"><float name="fov" value=")", fov, R"("/>)", cameraInside() ? inMedium : "",
-               R"(<transform name="to_world"><lookat origin=")", exact(camera.x), ", ", exact(camera.y), ", ", exact(camera.z),
-               R"(" target=")", target.x, ", ", target.y, ", ", target.z,
+               R"(<transform name="to_world"><lookat origin=")", exact(camera.x), ", ", exact(camera.y), ", ",
+               exact(camera.z), R"(" target=")", target.x, ", ", target.y, ", ", target.z,
                R"(" up="0, 1, 0"/></transform><sampler type="independent"><integer name="sample_count" value=")", spp,
                R"("/></sampler><film type="transient"><integer name="width" value=")", resolution,
                R"("/><integer name="height" value=")", resolution, R"("/><integer name="temporal_bins" value=")",
@@ -83,8 +97,8 @@ struct MediaScene {
                R"("/><float name="bin_width_opl" value=")", exact(grid.binWidth),
                R"("/><boolean name="write_frames" value="false"/><rfilter type="box"/></film></sensor>)",
                R"(<emitter type="point"><point name="position" x=")", exact(m.light.x), R"(" y=")", exact(m.light.y),
-               R"(" z=")", exact(m.light.z), R"("/><rgb name="intensity" value=")", m.intensity, R"("/>)", lightInside() ? inMedium : "",
-               R"(</emitter></scene>)");
+               R"(" z=")", exact(m.light.z), R"("/><rgb name="intensity" value=")", m.intensity, R"("/>)",
+               lightInside() ? inMedium : "", R"(</emitter></scene>)");
   }
 
   /// Per fine bin: the closed form summed over the film's pixels, each the
