@@ -85,9 +85,10 @@ std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vecto
     for (size_t i = 0; i < beams.size(); i += stride) {
       const Beam& b = beams[i];
       if (b.medium != p.medium) continue;
-      // The lines' distance bounds the segments' from below: most pairs
-      // end here, at a fifth of segmentDistance's cost. Not for lines
-      // within 1e-4 rad of parallel (n is rounding there).
+      // The lines' distance bounds the segments' from below (whatever the
+      // directions' lengths): most pairs end here, before segmentDistance's
+      // clamped solve. Not for lines within 1e-4 rad of parallel (n is
+      // rounding there); the 1e-9 margin covers the rounding of the rest.
       const V3 n = cross(v3(p.segment.ray.d), v3(b.direction));
       const double n2 = dot(n, n), along = dot(v3(p.segment.ray.o) - v3(b.origin), n);
       if (n2 > 1e-8 && along * along > within * within * n2 * (1.0 + 1e-9)) continue;
