@@ -13,6 +13,7 @@ subtracted, as tools/bench/media_suite.py does), mean over --seeds renders;
 CPU = user + system seconds of the femto process.
 """
 import argparse
+import contextlib
 import os
 import sys
 
@@ -59,7 +60,8 @@ def main():
         case = dict(name=f"fog box {args.resolution}px {bins} bins", scene=FOG,
                     defines=dict(resolution=args.resolution, bins=bins, bin_width=10.24 / bins, frames="false"),
                     reference_spp=args.reference_spp)
-        ref, own = ms.cached_path_reference(femto=args.femto, case=case, out_dir=out_dir)
+        with contextlib.redirect_stdout(sys.stderr):  # its progress lines
+            ref, own = ms.cached_path_reference(femto=args.femto, case=case, out_dir=out_dir)
         print(f"### {bins} bins\n")
         print("| split | CPU s | relMSE | relMSE × CPU | ratio |")
         print("|---|---|---|---|---|")

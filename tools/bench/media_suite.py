@@ -119,10 +119,10 @@ def cases(out_dir, quick):
     s = 1 if quick else 2  # budget scale
     list_ = [
         dict(name="fog box, 256 bins", scene=fog, defines=dict(resolution=32, bins=256, bin_width=0.04, frames="false"),
-             path=dict(spp=64 * s), beams=dict(passes=1 * s), reference_spp=2048),
+             path=dict(spp=64 * s), beams=dict(passes=4 * s), reference_spp=2048),
         dict(name="fog box, 1024 bins", scene=fog,
              defines=dict(resolution=32, bins=1024, bin_width=0.01, frames="false"),
-             path=dict(spp=64 * s), beams=dict(passes=1 * s), reference_spp=2048),
+             path=dict(spp=64 * s), beams=dict(passes=4 * s), reference_spp=2048),
         # Issue 14's two single-scattering cases, shared with tools/bench/beams_radius_cases.py.
         dict(name="large medium", scene=os.path.join(RADIUS_CASES, "large_medium.xml"), defines={},
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),

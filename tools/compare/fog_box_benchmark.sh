@@ -20,8 +20,8 @@
 #            FOG_CHECK (transient_beams:passes=256; empty: no check),
 #            FOG_NO_BUILD=1 (use BUILD/bin/femto as it is).
 # transient_beams renders with its scene file's settings
-# (scenes/cornell-box-fog/integrator-transient_beams.xml: 32 ldsampler camera samples
-# per pixel and 30000 photons per pass).
+# (scenes/cornell-box-fog/integrator-transient_beams.xml: 8 ldsampler camera samples
+# per pixel and 30000 photons per pass, an eighth of the camera segments gathering beams).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-build}
@@ -74,8 +74,8 @@ first_seed=${seeds%% *}
   echo "4-spp render's CPU time); it steepens the curves' low end (slopes below −1), not the equal-time ratios."
   echo "${res}x${res} pixels, the window OPL 3 to 13.24. The dotted line has slope −1, the Monte Carlo rate."
   echo "\`transient_path\` is budgeted by samples per pixel, \`transient_beams\` by passes of its scene-file"
-  echo "settings (\`scenes/cornell-box-fog/integrator-transient_beams.xml\`: 32 camera samples per pixel"
-  echo "from \`ldsampler\`, 30000 photons of which 3000 leave beams, a quarter of the camera segments gather"
+  echo "settings (\`scenes/cornell-box-fog/integrator-transient_beams.xml\`: 8 camera samples per pixel"
+  echo "from \`ldsampler\`, 30000 photons of which 3000 leave beams, an eighth of the camera segments gather"
   echo "beams); transient_path uses the \`independent\` sampler. Each integrator has the sampler that"
   echo "measured best for it (table at the end of this section)."
   echo
