@@ -418,11 +418,16 @@ class TransientPathIntegrator : public TransientIntegrator {
     return s.medium->sampleDistanceBefore(s.ray, s.gated.reach, sampler);
   }
 
-  /// Density of the free-flight vertex at distance t on the current
-  /// (homogeneous) segment, truncated or not (MIS against equiangular vertices).
-  static float freeFlightPdf(const PathState& s, float t) {
-    return s.gated.pdf(s.segmentMax, t, s.medium->freeFlightPdf(t));
+  /// Density of the free-flight vertex at distance t on the segment [0, tMax]
+  /// of `medium`, truncated by `gated` or not, as the MIS weights of the
+  /// equiangular and light-directed vertices count it. A heterogeneous
+  /// medium's free flights take no distance an equiangular vertex can sample
+  /// (freeFlightVertexWeight, the cutoff split): 0 there.
+  static float freeFlightPdf(const GatedSegment& gated, float tMax, const Medium& medium, float t) {
+    return medium.isHomogeneous() ? gated.pdf(tMax, t, medium.freeFlightPdf(t)) : 0.0f;
   }
+  /// The same on the current segment.
+  static float freeFlightPdf(const PathState& s, float t) { return freeFlightPdf(s.gated, s.segmentMax, *s.medium, t); }
 
   /// Whether the path's vertex can no longer contribute before the gate ends
   /// (time gating: OPL + distance to the nearest light, time_gate.h).
@@ -676,8 +681,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     // p_eq(t) / t^2. In a heterogeneous medium the free-flight vertex takes
     // no distance an equiangular one can sample (freeFlightVertexWeight).
     float own = l.vertexPdf * l.passProbability;
-    float freeFlight = medium.isHomogeneous() ? own * gated.pdf(tMax, t, medium.freeFlightPdf(t)) / pdf : 0.0f;
-    float weight = powerHeuristic(l.lightPdf, own, freeFlight);
+    float weight = powerHeuristic(l.lightPdf, own, own * freeFlightPdf(gated, tMax, medium, t) / pdf);
     recorder.addPulsed(opl + c.opl, opl + c.opl, l.weight * vertex * fx * Le * c.transmittance * weight,
                        l.emitter->pulse());
   }
@@ -753,8 +757,7 @@ class TransientPathIntegrator : public TransientIntegrator {
     // Heterogeneous: the distances it samples are its own against free
     // flights (freeFlightVertexWeight), shared only with the light-directed
     // vertex, whose distance density along the same segment is the same.
-    float weight = powerHeuristic(pdf, s.medium->isHomogeneous() ? freeFlightPdf(s, t) : 0.0f,
-                                  pdf * lightDirectedRatio(s, lightPosition));
+    float weight = powerHeuristic(pdf, freeFlightPdf(s, t), pdf * lightDirectedRatio(s, lightPosition));
     recorder.addPulsed(opl + c.opl, opl + c.opl, s.throughput * vertex * f * Le * c.transmittance * weight,
                        emitter->pulse());
   }
