@@ -1,4 +1,5 @@
 #include <transient_beams/camera_tracer.h>
+#include <algorithm>
 
 #include <cmath>
 
@@ -179,9 +180,14 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     if (!points) {
       value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler) *
                roulette.inverseSurvival(hit.tBeam);
-      // On an extension (boundary_extension.h) the density continues.
-      if (beam.before > 0.0f || beam.after > 0.0f)
-        value *= extensionContinuation(medium, dot(x - beam.origin, beam.direction) - hit.tBeam);
+      // On an extension (boundary_extension.h) the density continues. The
+      // point's parameter against its own clamp: exactly 0 on the beam
+      // (hit.tBeam, computed another way, differs by rounding there), so
+      // only pairs on an extension pay the exponentials.
+      if (beam.before > 0.0f || beam.after > 0.0f) {
+        const float along = dot(x - beam.origin, beam.direction);
+        value *= extensionContinuation(medium, along - std::clamp(along, 0.0f, beam.length));
+      }
     }
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
