@@ -58,7 +58,8 @@ BeamPass::BeamPass(const BeamSettings& settings, int pass, PhotonPass traced, co
             settings.surfaceRadiusOf(pass),
             traced.photonCount,
             traced.beamPhotonCount > 0 ? traced.beamPhotonCount : traced.photonCount},
-      traceSeconds_(traced.traceSeconds) {
+      traceSeconds_(traced.traceSeconds),
+      tracedPhotons_(traced.tracedPhotons) {
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart_).count();
 }
 
@@ -75,8 +76,8 @@ CameraStatistics BeamPass::cameraStatistics() const {
 
 std::string BeamPass::toString() const {
   return str("BeamPass[beams=", beams_.beams().size(), ", surface_photons=", photons_.size(),
-             ", photons=", maps_.photonCount, ", beam_photons=", maps_.beamPhotonCount, ", radius=", maps_.beamRadius, ", surface_radius=", maps_.surfaceRadius,
-             "]");
+             ", photons=", maps_.photonCount, ", beam_photons=", maps_.beamPhotonCount, ", radius=", maps_.beamRadius,
+             ", surface_radius=", maps_.surfaceRadius, "]");
 }
 
 }  // namespace femto::beams

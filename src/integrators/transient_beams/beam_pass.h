@@ -45,6 +45,8 @@ class BeamPass final : public TransientIntegrator {
   /// Wall seconds spent tracing the photons and building the two maps.
   double traceSeconds() const { return traceSeconds_; }
   double buildSeconds() const { return buildSeconds_; }
+  /// Photons traced: fewer than the maps' photonCount when no surface stores photons.
+  uint64_t tracedPhotons() const { return tracedPhotons_; }
 
  private:
   std::chrono::steady_clock::time_point buildStart_;  // first member: initialised before the maps are built
@@ -53,6 +55,7 @@ class BeamPass final : public TransientIntegrator {
   SurfacePhotonMap photons_;
   PassMaps maps_;
   double traceSeconds_ = 0.0, buildSeconds_ = 0.0;
+  uint64_t tracedPhotons_ = 0;
   mutable tbb::enumerable_thread_specific<CameraScratch> threads_;
 };
 

@@ -278,7 +278,12 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
   PhotonPass pass;
   pass.photonCount = uint64_t(settings.photonCount);
   pass.beamPhotonCount = uint64_t(settings.beamPhotons());
-  const uint64_t blocks = (pass.photonCount + PhotonsPerBlock - 1) / PhotonsPerBlock;
+  // Photons past the beam photons only leave surface photons: where no
+  // surface stores one (media behind index-matched boundaries, delta
+  // surfaces) they are not traced. Each photon has its own random stream, so
+  // the beams are the same either way.
+  pass.tracedPhotons = scene.hasSmoothSurfaces() ? pass.photonCount : pass.beamPhotonCount;
+  const uint64_t blocks = (pass.tracedPhotons + PhotonsPerBlock - 1) / PhotonsPerBlock;
   struct Block {
     std::vector<Beam> beams;
     std::vector<SurfacePhoton> photons;
@@ -287,7 +292,7 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
   auto traceBlock = [&](uint64_t b) {
     // One tracer per block: cheap to make, and no thread-local state to share.
     PhotonTracer tracer(scene, settings, horizon);
-    const uint64_t end = std::min(pass.photonCount, (b + 1) * PhotonsPerBlock);
+    const uint64_t end = std::min(pass.tracedPhotons, (b + 1) * PhotonsPerBlock);
     for (uint64_t i = b * PhotonsPerBlock; i < end; ++i)
       tracer.trace(seed, i, out[b].beams, out[b].photons, i < pass.beamPhotonCount);
   };

@@ -50,9 +50,10 @@ namespace femto::beams {
 struct PhotonPass {
   std::vector<Beam> beams;
   std::vector<SurfacePhoton> surfacePhotons;
-  uint64_t photonCount = 0;      // photons traced: the surface photons' N
+  uint64_t photonCount = 0;      // the surface photons' N (photons emitted per pass)
+  uint64_t tracedPhotons = 0;    // photons traced: beamPhotonCount when no surface stores photons
   uint64_t beamPhotonCount = 0;  // the first ones, which left the beams: the beams' N
-  double traceSeconds = 0.0;  // wall time tracePhotonPass took (statistics)
+  double traceSeconds = 0.0;     // wall time tracePhotonPass took (statistics)
 };
 
 /// Per-thread photon tracer (mutable state: its random stream).

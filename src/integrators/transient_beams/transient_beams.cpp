@@ -20,7 +20,8 @@
 // | name           | type    | default        | meaning                                                   | unit   |
 // |----------------|---------|----------------|-----------------------------------------------------------|--------|
 // | passes         | integer | 1              | progressive passes averaged into the film                 | -      |
-// | photon_count   | integer | 100000         | photons traced per pass (all leave surface photons)       | -      |
+// | photon_count   | integer | 100000         | photons per pass (all leave surface photons; only the     | -      |
+// |                |         |                | beam photons are traced when no surface stores photons)   |        |
 // | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all; absent: | -      |
 // |                |         |                | more when the derived radius is below the density radius  |        |
 // | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
@@ -94,7 +95,7 @@ struct PassTotals {
     pieces += pass.beamMap().pieceCount();
     for (const beams::Beam& b : pass.beamMap().beams()) beamLength += b.length;
     surfacePhotons += pass.photonMap().size();
-    photons += pass.maps().photonCount;
+    photons += pass.tracedPhotons();
     traceSeconds += pass.traceSeconds();
     buildSeconds += pass.buildSeconds();
     camera += pass.cameraStatistics();

@@ -65,6 +65,7 @@ Scene::Scene(const Properties& props) {
   };
   auto addSurface = [&](const Shape& shape) {
     hasPassThroughShapes_ |= isPassThrough(shape.bsdf());
+    hasSmoothSurfaces_ |= shape.bsdf() && shape.bsdf()->hasSmooth();
     addMedium(shape.interiorMedium());
     addMedium(shape.exteriorMedium());
   };

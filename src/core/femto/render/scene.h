@@ -63,6 +63,10 @@ class Scene : public Object {
   /// (isPassThrough in volumetric.h: media boundaries)? When none does, a
   /// connection outside media is a plain shadow ray.
   bool hasPassThroughShapes() const { return hasPassThroughShapes_; }
+  /// Does any shape (or shape of a group) have a BSDF with a smooth
+  /// (non-delta) lobe? When none does, light never scatters diffusely off a
+  /// surface: a surface photon map would stay empty.
+  bool hasSmoothSurfaces() const { return hasSmoothSurfaces_; }
   /// The largest refractive index of the media the scene names (shapes'
   /// interiors and exteriors, shapegroups' shapes included, the sensor's and
   /// the emitters'), at least 1: light crossing a length d through them takes
@@ -82,6 +86,7 @@ class Scene : public Object {
   std::shared_ptr<Integrator> integrator_;
   BoundingBox3f bbox_;
   bool hasPassThroughShapes_ = false;
+  bool hasSmoothSurfaces_ = false;
   float largestMediumEta_ = 1.0f;
 };
 

@@ -196,6 +196,40 @@ TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
         << "surface photon " << i;
 }
 
+TEST(TransientBeamsPhotons, WithoutSurfacesThatStorePhotonsOnlyTheBeamPhotonsAreTraced) {
+  // The same medium behind an index-matched boundary (no BSDF: nothing
+  // stores a surface photon), then behind a diffuse one. The photons past
+  // the beam photons would leave only surface photons: without a surface
+  // that stores them they are not traced, and the beams are the same.
+  auto sceneWith = [](const char* bsdf) {
+    return loadSceneStrict(str(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="0.6"/><float name="albedo" value="0.9"/></medium>
+  <sensor type="perspective"/>
+  <emitter type="point"><point name="position" x="0" y="0" z="0"/><float name="intensity" value="1"/></emitter>
+  <shape type="sphere"><float name="radius" value="2"/><ref name="interior" id="m"/>)",
+                               bsdf, R"(</shape>
+</scene>)"));
+  };
+  auto open = sceneWith(""), walled = sceneWith(R"(<bsdf type="diffuse"/>)");
+  EXPECT_FALSE(open->hasSmoothSurfaces());
+  EXPECT_TRUE(walled->hasSmoothSurfaces());
+  BeamSettings some = photonSettings(3000), first = photonSettings(700);
+  some.beamPhotonCount = 700;
+  const PhotonPass a = tracePhotonPass(*open, some, 43, Infinity), c = tracePhotonPass(*open, first, 43, Infinity),
+                   w = tracePhotonPass(*walled, some, 43, Infinity);
+  EXPECT_EQ(a.photonCount, 3000u);  // the surface estimate's N is unchanged
+  EXPECT_EQ(a.tracedPhotons, 700u);
+  EXPECT_EQ(w.tracedPhotons, 3000u);
+  EXPECT_TRUE(a.surfacePhotons.empty());
+  EXPECT_GT(w.surfacePhotons.size(), 1000u);
+  ASSERT_EQ(a.beams.size(), c.beams.size());
+  ASSERT_GT(a.beams.size(), 700u);
+  for (size_t i = 0; i < a.beams.size(); ++i)
+    ASSERT_TRUE(a.beams[i].origin == c.beams[i].origin && a.beams[i].direction == c.beams[i].direction &&
+                a.beams[i].power == c.beams[i].power && a.beams[i].opl == c.beams[i].opl)
+        << "beam " << i;
+}
+
 TEST(TransientBeamsPhotons, DerivedRadiusGivesAboutTheTargetPairsPerSegment) {
   // Isotropic beams spread evenly over a cube: a segment of the cube's side
   // meets about TargetPairHits of them within the derived radius (the
