@@ -99,6 +99,8 @@ class BeamMap {
   static double crossingDensity(const std::vector<Beam>& beams, float radius,
                                 const std::vector<CameraSegment>& segments, double weight);
 
+  /// The beams, in the map's order (the first piece of each in leaf order,
+  /// not the order given: neighbours in the tree lie together in memory).
   const std::vector<Beam>& beams() const { return beams_; }
   float radius() const { return radius_; }
   /// Bytes held by the structure (beams and nodes), for memory reports.

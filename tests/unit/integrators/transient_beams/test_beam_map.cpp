@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -82,7 +84,33 @@ CameraSegment makeSegment(const Point3f& o, const Vec3f& d, float tMax) {
   return s;
 }
 
-CameraSegment randomSegment(PCG32& rng) { return makeSegment(randomPoint(rng), randomDirection(rng), 1.5f * rng.nextFloat()); }
+CameraSegment randomSegment(PCG32& rng) {
+  return makeSegment(randomPoint(rng), randomDirection(rng), 1.5f * rng.nextFloat());
+}
+
+/// The map keeps its beams in its own order (beam_map.h): for each of the
+/// map's beams, its index in `input`, matched by origin, direction and length
+/// (the tests' beams differ in these).
+std::vector<uint32_t> inputIndices(const BeamMap& map, const std::vector<Beam>& input) {
+  auto key = [](const Beam& b) {
+    return std::array<float, 7>{b.origin.x,    b.origin.y,    b.origin.z, b.direction.x,
+                                b.direction.y, b.direction.z, b.length};
+  };
+  std::map<std::array<float, 7>, uint32_t> where;
+  for (uint32_t i = 0; i < input.size(); ++i) where[key(input[i])] = i;
+  EXPECT_EQ(where.size(), input.size()) << "the test's beams must differ";
+  std::vector<uint32_t> index;
+  for (const Beam& b : map.beams()) index.push_back(where.at(key(b)));
+  return index;
+}
+
+/// `found` (indices into map.beams()) as indices into the input, ascending.
+std::vector<uint32_t> asInput(const std::vector<uint32_t>& found, const std::vector<uint32_t>& index) {
+  std::vector<uint32_t> out;
+  for (uint32_t b : found) out.push_back(index[b]);
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 /// Checks one query against brute force; returns {candidates, beams within radius}.
 std::pair<size_t, size_t> checkQuery(const BeamMap& map, const CameraSegment& seg, double farBound) {
@@ -194,13 +222,16 @@ TEST(BeamMap, AxisParallelBeamsAndSegments) {
   for (float radius : {0.0f, 0.01f}) {
     SCOPED_TRACE(radius);
     BeamMap map(beams, radius);
+    const std::vector<uint32_t> index = inputIndices(map, beams);
     std::vector<uint32_t> out;
     // A segment along y at x = 0.3, z = 0.5 crosses every x-beam of the
     // slice z = 0.5 (distance 0).
     map.query(makeSegment({0.3f, -0.5f, 0.5f}, {0, 1, 0}, 2.0f), out);
+    out = asInput(out, index);
     for (int i = 0; i < 10; ++i) EXPECT_TRUE(std::binary_search(out.begin(), out.end(), uint32_t(2 * (i * 10 + 5))));
     // Along z, starting exactly on a beam: distance 0 to beams at that (x, y).
     map.query(makeSegment({0.5f, 0.2f, 0.0f}, {0, 0, 1}, 1.0f), out);
+    out = asInput(out, index);
     EXPECT_TRUE(std::binary_search(out.begin(), out.end(), uint32_t(2 * (2 * 10 + 0))));
     PCG32 rng(1, 9);
     for (int k = 0; k < 100; ++k) {
@@ -314,7 +345,7 @@ TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
     const size_t crossedLines = map.queryUnsorted(seg, lines, marks, BeamMap::Cull::Lines);
     const size_t crossedBoxes = map.queryUnsorted(seg, boxes, marks, BeamMap::Cull::Boxes);
     EXPECT_EQ(crossedLines, crossedBoxes) << "query " << i;  // the same traversal: the same piece boxes
-    EXPECT_GE(crossedBoxes, boxes.size()) << "query " << i;   // each beam at least once
+    EXPECT_GE(crossedBoxes, boxes.size()) << "query " << i;  // each beam at least once
     std::sort(boxes.begin(), boxes.end());
     EXPECT_EQ(boxes, sorted) << "query " << i;
     std::sort(lines.begin(), lines.end());
@@ -322,11 +353,12 @@ TEST(BeamMap, LineCullKeepsEveryPairAndDropsTheRest) {
     for (uint32_t b : sorted) {
       RayBeamHit hit;
       const bool kept = std::binary_search(lines.begin(), lines.end(), b);
-      if (rayBeamIntersect(seg, beams[b], radius, hit)) {
+      if (rayBeamIntersect(seg, map.beams()[b], radius, hit)) {
         ++pairs;
         EXPECT_TRUE(kept) << "beam " << b << " dropped, query " << i;
       }
-      if (distance(seg, beams[b]) < 0.999 * radius) EXPECT_TRUE(kept) << "beam " << b << " within the radius dropped";
+      if (distance(seg, map.beams()[b]) < 0.999 * radius)
+        EXPECT_TRUE(kept) << "beam " << b << " within the radius dropped";
     }
     boxCount += sorted.size();
     lineCount += lines.size();
@@ -417,7 +449,8 @@ TEST(BeamMap, CostRuleGivesTightPiecesWhereSegmentsAreMany) {
   }
   ASSERT_GT(exact, 100u);  // the bounds mean something
   EXPECT_LT(double(tightCandidates), 3.0 * double(exact)) << tightCandidates << " candidates for " << exact;
-  EXPECT_GT(double(cappedCandidates), 3.0 * double(exact)) << "the capped fixed rule is as tight: the bound tells nothing";
+  EXPECT_GT(double(cappedCandidates), 3.0 * double(exact))
+      << "the capped fixed rule is as tight: the bound tells nothing";
   // Pieces of ~3.5-6 radii on these directions (sqrt(12 + kappa^2 / r^2) r / sqrt(S2)).
   EXPECT_GT(tight.pieceCount(), 60u * beams.size());
 
@@ -442,9 +475,12 @@ TEST(BeamMap, PieceRulesFindTheSamePairs) {
   const float radius = 0.005f;
   BeamMapOptions sparse, dense;
   sparse.crossingDensity = 3.0;  // few segments: long pieces
-  dense.crossingDensity = 1e6;    // many: pieces of a few radii
+  dense.crossingDensity = 1e6;   // many: pieces of a few radii
   dense.maxPiecesPerBeam = 1e4f;
   BeamMap fixedMap(beams, radius), sparseMap(beams, radius, sparse), denseMap(beams, radius, dense);
+  // Each map orders its beams its own way: pairs are compared by input index.
+  const std::vector<uint32_t> fixedIndex = inputIndices(fixedMap, beams), sparseIndex = inputIndices(sparseMap, beams),
+                              denseIndex = inputIndices(denseMap, beams);
   // The three cut the beams differently (fixed: about 4 pieces each under the cap).
   EXPECT_LT(sparseMap.pieceCount(), 2 * beams.size());
   EXPECT_GT(fixedMap.pieceCount(), 3 * beams.size());
@@ -457,15 +493,16 @@ TEST(BeamMap, PieceRulesFindTheSamePairs) {
     const CameraSegment seg = randomSegment(q);
     std::vector<std::vector<uint32_t>> hits;
     std::vector<double> sums;
-    for (const BeamMap* map : {&fixedMap, &sparseMap, &denseMap})
+    for (const auto& [map, index] :
+         {std::pair{&fixedMap, &fixedIndex}, std::pair{&sparseMap, &sparseIndex}, std::pair{&denseMap, &denseIndex}})
       for (BeamMap::Cull cull : {BeamMap::Cull::Boxes, BeamMap::Cull::Lines}) {
         map->queryUnsorted(seg, found, marks, cull);
         std::vector<uint32_t>& h = hits.emplace_back();
         double sum = 0.0;
         for (uint32_t b : found) {
           RayBeamHit hit;
-          if (!rayBeamIntersect(seg, beams[b], radius, hit)) continue;
-          h.push_back(b);
+          if (!rayBeamIntersect(seg, map->beams()[b], radius, hit)) continue;
+          h.push_back((*index)[b]);
           sum += double(hit.kernel) * (hit.oplEnd - hit.oplBegin + 1.0);
         }
         std::sort(h.begin(), h.end());
