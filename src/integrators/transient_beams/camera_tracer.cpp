@@ -231,7 +231,8 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
   for (uint32_t index : scratch_) {
     const SurfacePhoton& photon = maps_.photons.photons()[index];
     if (dot(photon.n, side) <= 0.0f || !settings_.depthAllowed(s.segments + photon.depth)) continue;
-    const double opl = s.opl + photon.opl;
+    // Timed along the photon's last leg to this point (surface_photon_map.h).
+    const double opl = s.opl + photon.opl + lastLegDelay(photon, si.p);
     if (!(opl < horizon)) continue;
     Vec3f local = si.toLocal(photon.wi);
     float cosine = std::abs(local.z);

@@ -100,6 +100,7 @@ struct PhotonTracer::Photon : OpticalPath {
   bool clockAtFirstSurface = false;  // from an emitter at infinity: OPL 0 where it first meets a surface
   float startExtension = 0.0f;       // the next beam's Beam::before: it starts on a boundary (boundary_extension.h)
   Vec3f startOffsetDelay{0.0f};      // the next beam's Beam::offsetDelay (entered through an index change)
+  float lastLeg = 0.0f;              // length of the segment that reached the current surface (SurfacePhoton::leg)
 };
 
 void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
@@ -230,6 +231,8 @@ bool PhotonTracer::reachSurface(Photon& ph, const SurfaceInteraction& si) const 
   // A photon from an emitter at infinity starts its clock here (emit).
   const bool counted = !ph.clockAtFirstSurface;
   ph.clockAtFirstSurface = false;
+  // An uncounted leg (the clock starts here) is timed as a plane wave.
+  ph.lastLeg = counted ? distance(ph.vertex, si.p) : Infinity;
   ph.advance(si.p, counted);
   return ph.opl < horizon_;
 }
@@ -239,7 +242,7 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   const BSDF& bsdf = *si.bsdf();
   if (bsdf.hasSmooth() && ph.indirect) {
     Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
-    photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter});
+    photons.push_back(SurfacePhoton{si.p, n, -ph.ray.d, ph.power, ph.opl, ph.depth, ph.emitter, ph.lastLeg, ph.eta()});
   }
   // A photon stored above has not scattered here yet: the camera side adds
   // this vertex's delay when it gathers it.

@@ -11,6 +11,18 @@
 
 namespace femto::beams {
 
+double lastLegDelay(const SurfacePhoton& photon, const Point3f& x) {
+  if (!(photon.legEta > 0.0f)) return 0.0;
+  const double ox = double(x.x) - photon.p.x, oy = double(x.y) - photon.p.y, oz = double(x.z) - photon.p.z;
+  const double along = ox * photon.wi.x + oy * photon.wi.y + oz * photon.wi.z;  // offset toward the leg's start
+  if (!std::isfinite(photon.leg)) return -double(photon.legEta) * along;        // plane wave
+  // |x - q| - leg with q = p + wi leg, without cancellation: (|x - q|^2 - leg^2) / (|x - q| + leg).
+  const double leg = photon.leg, offset2 = ox * ox + oy * oy + oz * oz;
+  const double toStart = std::sqrt(std::max(0.0, offset2 - 2.0 * leg * along + leg * leg));
+  const double sum = toStart + leg;
+  return sum > 0.0 ? double(photon.legEta) * (offset2 - 2.0 * leg * along) / sum : 0.0;
+}
+
 namespace {
 
 // Cell coordinates are packed into 21 bits each.
@@ -70,8 +82,7 @@ void SurfacePhotonMap::build(float cellSize) {
   // At most MaxCells cells along an axis (the packed key), and never a zero
   // cell (all photons at one point).
   cellSize_ = std::max({cellSize, extent / float(MaxCells - 1), 1e-30f});
-  for (int k = 0; k < 3; ++k)
-    gridRes_[k] = std::clamp(int(box.extents()[k] / cellSize_) + 1, 1, MaxCells);
+  for (int k = 0; k < 3; ++k) gridRes_[k] = std::clamp(int(box.extents()[k] / cellSize_) + 1, 1, MaxCells);
 
   // Counting sort of the photons by bucket, stable (photon order within a
   // bucket), so the same photons always give the same map.

@@ -14,20 +14,38 @@
 #include <cstdint>
 #include <vector>
 
-#include <femto/math/vector.h>
 #include <femto/math/spectrum.h>
+#include <femto/math/vector.h>
 
 namespace femto::beams {
 
 struct SurfacePhoton {
-  Point3f p;           // where it landed
-  Normal3f n;          // geometric normal of the surface, on the side the photon arrived from
-  Vec3f wi;            // unit, from p back toward where the photon came from
-  Color3f power{0.0f}; // flux carried
-  double opl = 0.0;    // OPL at arrival since emission
-  int depth = 1;       // photon path segments up to this point (1: straight from the emitter)
+  Point3f p;             // where it landed
+  Normal3f n;            // geometric normal of the surface, on the side the photon arrived from
+  Vec3f wi;              // unit, from p back toward where the photon came from
+  Color3f power{0.0f};   // flux carried
+  double opl = 0.0;      // OPL at arrival since emission
+  int depth = 1;         // photon path segments up to this point (1: straight from the emitter)
   uint32_t emitter = 0;  // index in Scene::emitters() of the emitter that sent the photon (its pulse)
+  // The photon's last leg, straight at index legEta from the point
+  // p + wi * leg (its last vertex, scattering or boundary) to p; the camera
+  // side times a gather at another point through that vertex
+  // (lastLegDelay). legEta 0: not known, no correction; an infinite leg: a
+  // plane wave.
+  float leg = 0.0f;
+  float legEta = 0.0f;
 };
+
+/// OPL to add to `photon.opl` for light that took the photon's path but
+/// ended its last leg at `x` instead of at photon.p: eta (|x - q| - leg), q the
+/// leg's start; exactly the OPL of that path, so a gather at x never
+/// deposits before light can arrive there (any path's OPL is at least the
+/// shortest's; an infinite leg, a plane wave, is the limit). Without it the estimate at x would be the photons' times at
+/// up to a radius away: a blur of the time profile of width up to
+/// 2 eta r (a wavefront crossing the disc). What is left is the spread of
+/// the last vertices' positions the disc averages over, second order:
+/// eta |x - p|^2 / (2 leg) across the leg.
+double lastLegDelay(const SurfacePhoton& photon, const Point3f& x);
 
 class SurfacePhotonMap {
  public:

@@ -136,4 +136,44 @@ TEST(SurfacePhotonMap, RejectsBadInput) {
 }
 
 }  // namespace
+
+TEST(SurfacePhotonMap, LastLegDelayIsTheOplThroughTheLegsStart) {
+  // eta (|x - q| - leg) against the same in long double, from a leg of 1e-3
+  // to 1e4 and offsets down to 1e-6 (where the difference of two lengths
+  // would cancel in float); the plane-wave limit for an infinite leg; no
+  // correction without a known leg. The reference takes q along wi made unit
+  // in long double: the float wi is unit only to ~1e-7, which would move q by
+  // that much of the leg.
+  SurfacePhoton photon;
+  photon.p = Point3f(0.3f, -0.2f, 1.0f);
+  photon.wi = normalize(Vec3f(0.4f, 0.5f, 0.7f));
+  photon.legEta = 1.33f;
+  const long double w[3] = {photon.wi.x, photon.wi.y, photon.wi.z};
+  const long double norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  PCG32 rng(3, 5);
+  for (float leg : {1e-3f, 0.5f, 3.0f, 1e4f})
+    for (float size : {1e-6f, 1e-3f, 0.1f}) {
+      const Vec3f offset = Vec3f(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f) * size;
+      const Point3f x = photon.p + offset;
+      // x - p exactly (x is rounded to float).
+      const long double o[3] = {(long double)x.x - photon.p.x, (long double)x.y - photon.p.y,
+                                (long double)x.z - photon.p.z};
+      long double toStart2 = 0.0L, along = 0.0L;
+      for (int k = 0; k < 3; ++k) {
+        const long double d = o[k] - w[k] / norm * leg;
+        toStart2 += d * d;
+        along += o[k] * w[k] / norm;
+      }
+      const double exact = double(1.33L * (std::sqrt(toStart2) - (long double)leg));
+      photon.leg = leg;
+      EXPECT_NEAR(lastLegDelay(photon, x), exact, 1e-12 + 1e-6 * std::fabs(exact))
+          << "leg " << leg << ", offset " << size;
+      photon.leg = Infinity;
+      const double plane = double(-1.33L * along);
+      EXPECT_NEAR(lastLegDelay(photon, x), plane, 1e-12 + 1e-6 * std::fabs(plane)) << "offset " << size;
+    }
+  photon.legEta = 0.0f;
+  EXPECT_EQ(lastLegDelay(photon, photon.p + Vec3f(0.1f)), 0.0);
+}
+
 }  // namespace femto::beams
