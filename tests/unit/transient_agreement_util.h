@@ -106,13 +106,14 @@ inline void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, 
   }
 }
 
-/// transient_beams' kernels are consistent, not unbiased: near walls and
-/// edges part of a kernel falls outside the medium or off the surface, so the
-/// estimate is low there. With the default radii (the beam radius derived
-/// from the beams, at most 1 % of the scene's diagonal, and 1 % of it on
-/// surfaces) the band within a radius of an edge is a few percent of what the
-/// camera sees and loses at most half of its indirect light there: allow 2 %
-/// of the value on top of the noise.
+/// transient_beams' kernels are consistent, not unbiased: near a medium's
+/// boundary part of a beam kernel falls outside it, so the estimate is low
+/// there (the surface kernel divides by its disc's area on the surface,
+/// surface_coverage.h, and keeps the ring's quadrature error, ~6 % of what an
+/// edge would lose). With the default radii (derived from pass 0's beams and
+/// photons, the beams' at most 1 % of the scene's diagonal) the band within a
+/// radius of a boundary is a few percent of what the camera sees and loses at
+/// most half of its light there: allow 2 % of the value on top of the noise.
 constexpr double KernelBias = 0.02;
 
 }  // namespace femto::test

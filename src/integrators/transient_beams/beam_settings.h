@@ -65,7 +65,9 @@ struct BeamSettings : PathDepthSettings {
   /// Fill in the surface radius if not given, as a fraction of the scene's
   /// bounding-box diagonal (a scene without shapes has no surfaces to gather
   /// on: any radius); an error naming the integrator when the scene's extent
-  /// is not finite. The beam radius, if not given, stays 0 until
+  /// is not finite. Pass 0 then derives it from its photons and the film
+  /// (surface_radius_rule.h), within 4 times this; this stays where no probe
+  /// sees a smooth surface. The beam radius, if not given, stays 0 until
   /// withBeamRadiusFrom() sees the first pass's beams.
   BeamSettings resolved(const BoundingBox3f& sceneBounds) const;
 

@@ -18,6 +18,7 @@
 #include <transient_beams/medium_extent.h>
 #include <transient_beams/ray_beam.h>
 #include <transient_beams/ray_point.h>
+#include <transient_beams/surface_coverage.h>
 
 namespace femto::beams {
 namespace {
@@ -226,7 +227,10 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
   // Only photons that arrived on the side the camera sees.
   const Vec3f toCamera = si.toWorld(si.wi);
   const Normal3f side = dot(si.n, toCamera) >= 0.0f ? si.n : -si.n;
-  const double norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount));
+  // The disc's area on this surface (surface_coverage.h): past an edge it
+  // holds no photons.
+  const double covered = std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare);
+  const double norm = 1.0 / (double(Pi) * double(r) * double(r) * covered * double(maps_.photonCount));
   const double horizon = recorder.horizon();
   for (uint32_t index : scratch_) {
     const SurfacePhoton& photon = maps_.photons.photons()[index];

@@ -19,7 +19,9 @@
 // the beams alone. At the final surface, direct light comes from next-event
 // estimation (through media, with its OPL) and indirect light and caustics
 // from the surface photons within the surface radius (uniform disc kernel,
-// Jensen 2001 eq. 7.6), deposited at photon OPL + camera OPL. Emitters seen
+// Jensen 2001 eq. 7.6, over the disc's area on the surface,
+// surface_coverage.h), each deposited at the camera OPL + the photon's OPL
+// timed along its last leg to the gather point (surface_photon_map.h). Emitters seen
 // directly or through specular chains are recorded as found.
 //
 // Time of emission: every contribution is computed for a Dirac emission at

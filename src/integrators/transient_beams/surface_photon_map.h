@@ -40,11 +40,10 @@ struct SurfacePhoton {
 /// ended its last leg at `x` instead of at photon.p: eta (|x - q| - leg), q the
 /// leg's start; exactly the OPL of that path, so a gather at x never
 /// deposits before light can arrive there (any path's OPL is at least the
-/// shortest's; an infinite leg, a plane wave, is the limit). Without it the estimate at x would be the photons' times at
-/// up to a radius away: a blur of the time profile of width up to
-/// 2 eta r (a wavefront crossing the disc). What is left is the spread of
-/// the last vertices' positions the disc averages over, second order:
-/// eta |x - p|^2 / (2 leg) across the leg.
+/// shortest's; an infinite leg, a plane wave, is the limit). Without it the estimate at x would be the photons' times
+/// at up to a radius away: a blur of the time profile of width up to 2 eta r (a wavefront crossing the disc). What is
+/// left is the spread of the last vertices' positions the disc averages over, second order: eta |x - p|^2 / (2 leg)
+/// across the leg.
 double lastLegDelay(const SurfacePhoton& photon, const Point3f& x);
 
 class SurfacePhotonMap {

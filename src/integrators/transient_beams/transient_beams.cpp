@@ -31,7 +31,9 @@
 // |                |         |                | OPL footprint (oblique pairs too), 0.4 % boundary loss    |        |
 // |                |         |                | (beams: past their extensions; radius_rule.h), 0.1 % leak |        |
 // |                |         |                | near point lights (light_leak.h)                          |        |
-// | surface_radius | float   | 0.01 diagonal  | surface photon kernel radius of the first pass (0: this)  | scene  |
+// | surface_radius | float   | derived        | surface photon kernel radius of the first pass; 0 or      | scene  |
+// |                |         |                | absent: 64 nearest pass-0 photons, at most 2 pixels       |        |
+// |                |         |                | (surface_radius_rule.h); 0.01 diagonal without probes     |        |
 // | alpha          | float   | 0.9            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
 // |                |         |                | r^2 likewise (surfaces)                                   |        |
 // | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
@@ -64,6 +66,7 @@
 #include <transient_beams/boundary_coverage.h>
 #include <transient_beams/light_leak.h>
 #include <transient_beams/radius_probe.h>
+#include <transient_beams/surface_radius_rule.h>
 
 namespace femto {
 namespace {
@@ -179,6 +182,17 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           logInfo("transient_beams: derived beam radius ", derived.radius, " (density ", derived.density, ", time ",
                   derived.time, ", boundary ", derived.boundary, ", light ", derived.light, "), ",
                   settings.beamPhotons(), " beam photons per pass");
+        }
+        // The surface radius, unless given, from pass 0's surface photons
+        // and the film's pixels (surface_radius_rule.h); the scene's
+        // default (resolved()) caps the photon search at 4 times it and
+        // stays when no probe sees a surface.
+        if (pass == 0 && !(settings_.surfaceRadius > 0.0f)) {
+          const beams::DerivedSurfaceRadius surface =
+              beams::deriveSurfaceRadius(scene, traced.surfacePhotons, 4.0 * double(settings.surfaceRadius));
+          if (surface.radius > 0.0) settings.surfaceRadius = float(surface.radius);
+          logInfo("transient_beams: surface radius ", settings.surfaceRadius, " (density ", surface.density,
+                  ", pixels ", surface.pixels, ")");
         }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced), &scene, horizon);
       };

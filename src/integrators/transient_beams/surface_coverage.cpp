@@ -1,0 +1,49 @@
+#include <transient_beams/surface_coverage.h>
+
+#include <cmath>
+
+#include <femto/math/constants.h>
+#include <femto/math/frame.h>
+#include <femto/math/ray.h>
+#include <femto/render/interaction.h>
+#include <femto/render/scene.h>
+#include <femto/transport/volumetric.h>
+
+namespace femto::beams {
+
+namespace {
+
+/// Does `ray` (within its tmax) meet a surface that is not an index-matched
+/// boundary (a medium's boundary is not an edge)?
+bool hitsSolid(const Scene& scene, Ray ray) {
+  if (!scene.hasPassThroughShapes()) return scene.rayTest(ray);
+  for (int crossing = 0; crossing < MaxPassThrough; ++crossing) {
+    SurfaceInteraction si;
+    if (!scene.rayIntersect(ray, si)) return false;
+    if (!isPassThrough(si)) return true;
+    const float left = ray.tmax - si.t;
+    if (!(left > 0.0f)) return false;
+    ray = si.spawnRay(ray.d);
+    ray.tmax = left;
+  }
+  return false;
+}
+
+}  // namespace
+
+double coveredShare(const Scene& scene, const Point3f& p, const Vec3f& n, double r) {
+  if (!(r > 0.0)) return 1.0;
+  const Frame frame(n);
+  const float lift = float(0.1 * r), rho = float(r / std::sqrt(2.0));
+  const Point3f from = p + n * lift;
+  int covered = 0;
+  for (int k = 0; k < CoveragePoints; ++k) {
+    const double phi = 2.0 * Pi * (double(k) + 0.5) / CoveragePoints;
+    const Vec3f across = frame.s * float(std::cos(phi)) + frame.t * float(std::sin(phi));
+    if (hitsSolid(scene, Ray(from, across, 0.0f, rho))) continue;  // a wall in the way
+    covered += hitsSolid(scene, Ray(from + across * rho, -n, 0.0f, lift + float(1.5 * r)));
+  }
+  return double(covered) / CoveragePoints;
+}
+
+}  // namespace femto::beams
