@@ -109,7 +109,7 @@ inline void expectAgree(const std::vector<Mean>& a, const std::vector<Mean>& b, 
 /// transient_beams' kernels are consistent, not unbiased: near a medium's
 /// boundary part of a beam kernel falls outside it, so the estimate is low
 /// there (the surface kernel divides by its disc's area on the surface,
-/// surface_coverage.h, and keeps the ring's quadrature error, ~6 % of what an
+/// surface_coverage.h, and keeps the ring's quadrature error, ~3 % of what an
 /// edge would lose). With the default radii (derived from pass 0's beams and
 /// photons, the beams' at most 1 % of the scene's diagonal) the band within a
 /// radius of a boundary is a few percent of what the camera sees and loses at

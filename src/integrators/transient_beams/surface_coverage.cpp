@@ -34,7 +34,7 @@ bool hitsSolid(const Scene& scene, Ray ray) {
 double coveredShare(const Scene& scene, const Point3f& p, const Vec3f& n, double r) {
   if (!(r > 0.0)) return 1.0;
   const Frame frame(n);
-  const float lift = float(0.1 * r), rho = float(r / std::sqrt(2.0));
+  const float lift = float(0.1 * r), rho = float(2.0 * r / 3.0);  // CoveragePoints
   const Point3f from = p + n * lift;
   int covered = 0;
   for (int k = 0; k < CoveragePoints; ++k) {

@@ -44,7 +44,7 @@ TEST(SurfaceCoverage, OpenEdgesAndCorners) {
   EXPECT_EQ(coveredShare(*scene, Point3f(0.999f, 0.999f, 0.0f), up, r), 0.25);
   // On the wall x = 1 (normal -x), at its foot: the floor cuts the lower half.
   EXPECT_EQ(coveredShare(*scene, Point3f(1.0f, 0.0f, 0.001f), Vec3f(-1.0f, 0.0f, 0.0f), r), 0.5);
-  // The ring lies at r / sqrt(2): a point 0.08 from the edge keeps it whole at r = 0.1.
+  // The ring lies at 2r/3: a point 0.08 from the edge keeps it whole at r = 0.1.
   EXPECT_EQ(coveredShare(*scene, Point3f(-0.92f, 0.0f, 0.0f), up, r), 1.0);
   EXPECT_LT(coveredShare(*scene, Point3f(-0.92f, 0.0f, 0.0f), up, 0.2), 1.0);
 }
@@ -52,8 +52,8 @@ TEST(SurfaceCoverage, OpenEdgesAndCorners) {
 TEST(SurfaceCoverage, ASphereCurvingAwayWithinReachIsCovered) {
   auto scene = test::loadSceneStrict(R"(<scene version="3.0.0">
     <shape type="sphere"><float name="radius" value="1"/><bsdf type="diffuse"/></shape></scene>)");
-  // r up to R: the ring (at r / sqrt 2) lies over the sphere, which falls at
-  // most 0.3 R below it, within reach.
+  // r up to R: the ring (at 2r/3) lies over the sphere, which falls at
+  // most 0.26 R below it, within reach.
   for (double r : {0.05, 0.5, 1.0}) EXPECT_EQ(coveredShare(*scene, Point3f(0, 0, 1), Vec3f(0, 0, 1), r), 1.0) << r;
 }
 

@@ -5,7 +5,7 @@
 // transient_path. Divided by the whole disc, the photons' share of the
 // light would be low by 2 / (3 pi) of it over that band (about 6 %, some
 // 2-3 % of the image); divided by the disc's area on the surface the sums
-// agree within the runs' noise and the ring's quadrature error (6 % of that
+// agree within the runs' noise and the ring's quadrature error (2.6 % of that
 // loss, below 0.5 % of the image).
 #include <gtest/gtest.h>
 
