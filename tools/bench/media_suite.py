@@ -128,6 +128,10 @@ def cases(out_dir, quick):
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),
         dict(name="thick medium", scene=os.path.join(SUITE, "thick-medium.xml"), defines={},
              path=dict(spp=64 * s), beams=dict(passes=2 * s, spp=16), reference_spp=2048),
+        # Multiple scattering alone at 1024 bins (issue 14's "20x on multiple scattering at 1024 bins").
+        dict(name="thick medium, 1024 bins", scene=os.path.join(SUITE, "thick-medium.xml"),
+             defines=dict(bins=1024, bin_width=0.0125),
+             path=dict(spp=64 * s), beams=dict(passes=2 * s, spp=16), reference_spp=2048),
         dict(name="box, light outside", scene=os.path.join(RADIUS_CASES, "bounded_box.xml"), defines={},
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),
     ]
