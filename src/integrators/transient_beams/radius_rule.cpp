@@ -120,8 +120,11 @@ double timeRadius(const TimeGrid& grid, double eta) {
 double obliqueTimeRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, const TimeGrid& grid,
                          double eta, double upper) {
   const double perpendicular = timeRadius(grid, eta);
+  // No bins (a steady film): no time bound at all. (Below, a steady grid's
+  // default bin width of 1 would bound scenes in large units.)
+  if (!std::isfinite(perpendicular)) return perpendicular;
   const double hi = std::min(upper, perpendicular);
-  if (!std::isfinite(hi) || !(hi > 0.0) || probes.empty() || beams.empty()) return perpendicular;
+  if (!(hi > 0.0) || probes.empty() || beams.empty()) return perpendicular;
   const std::vector<NearPair> pairs = nearPairs(beams, probes, hi);
   // E[W^2] at radius r over the pairs' expected contributions.
   auto meanSquare = [&](double r) {

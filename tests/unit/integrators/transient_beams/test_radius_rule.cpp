@@ -143,7 +143,14 @@ TEST(RadiusRule, ObliquePairsKeepThePerpendicularFootprint) {
     EXPECT_NEAR(obliqueTimeRadius(beams, probes, grid, eta, Infinity), perpendicular, 0.03 * perpendicular)
         << degrees << " degrees";
   }
+  // Steady films have no time bound, whatever the other bounds allow (a
+  // steady grid's bin width, 1 by default, once bounded a scene in
+  // millimetres: lajolla's fog box, 1.04 against a density bound of 5.5).
   EXPECT_FALSE(std::isfinite(obliqueTimeRadius(beams, probes, TimeGrid{}, eta, Infinity))) << "steady films";
+  for (Beam& b : beams) b.origin = Point3f(Vec3f(b.origin) * 100.0f), b.length *= 100.0f;
+  for (ProbeSegment& p : probes)
+    p.segment.ray = Ray(Point3f(Vec3f(p.segment.ray.o) * 100.0f), p.segment.ray.d), p.segment.tMax *= 100.0f;
+  EXPECT_FALSE(std::isfinite(obliqueTimeRadius(beams, probes, TimeGrid{}, eta, 10.0))) << "steady films, 100x the scale";
   EXPECT_EQ(obliqueTimeRadius({}, probes, grid, eta, Infinity), perpendicular) << "no beams: the perpendicular bound";
 }
 
