@@ -9,7 +9,8 @@ the "media-suite" section of docs/BENCHMARKS.md (tools/bench/run_media_suite.sh)
 Per scene: a reference (the mean of two long transient_path renders with
 other seeds, or ToF-Tungsten's own 8192-spp volume averaged over 2x2 pixels
 for the port rendered at half its resolution), one render of each integrator
-at a fixed budget; relMSE (epsilon = 0.01, as tools/compare and the peer's
+at a fixed budget (and lajolla's fog Cornell box, a real scene, steady, when
+../shared/scenes holds it); relMSE (epsilon = 0.01, as tools/compare and the peer's
 README) against the reference, CPU time (user + system of the femto process)
 and their product: for a Monte Carlo estimator relMSE x CPU is about constant
 in the budget, so the ratio of the products is the ratio of relMSE at equal
@@ -33,6 +34,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SUITE = os.path.join(ROOT, "tools", "bench", "media_suite")
 RADIUS_CASES = os.path.join(ROOT, "tools", "bench", "beams_radius")
 TOF = os.path.abspath(os.path.join(ROOT, "..", "shared", "scenes", "tof-tungsten-cbox-trans"))
+LAJOLLA = os.path.abspath(os.path.join(ROOT, "..", "shared", "scenes", "lajolla-vol-cbox-fog-0.5"))
 EPSILON = 0.01
 STATS = re.compile(r"beam queries \(([0-9.e+-]+) candidates and ([0-9.e+-]+) pair hits each\)")
 RADIUS = re.compile(r"pass 0: BeamPass\[.*?radius=([0-9.e+-]+)")
@@ -114,6 +116,32 @@ def tof_scene(out_dir):
     return os.path.join(d, "scene.xml")
 
 
+def lajolla_scene(out_dir):
+    """Lajolla's fog Cornell box (a Mitsuba 0.5 scene by others, in
+    millimetres; ../shared/scenes/lajolla-vol-cbox-fog-0.5) with the suite's
+    integrator files, its film a one-bin transient film (the steady image,
+    written as a volume) at $resolution, its sampler at $spp."""
+    d = os.path.join(out_dir, "lajolla-fog")
+    os.makedirs(d, exist_ok=True)
+    text = open(os.path.join(LAJOLLA, "vol_cbox.xml")).read()
+    text = re.sub(r'<integrator type="volpath">.*?</integrator>',
+                  '<default name="integrator" value="transient_path"/><default name="max_depth" value="-1"/>'
+                  '<default name="resolution" value="48"/><default name="spp" value="16"/>'
+                  '<include filename="integrator-$integrator.xml"/>', text, flags=re.S)
+    text = text.replace('<integer name="sampleCount" value="1024"/>', '<integer name="sampleCount" value="$spp"/>')
+    text = re.sub(r'<film type="hdrfilm">.*?</film>',
+                  '<film type="transient"><integer name="width" value="$resolution"/>'
+                  '<integer name="height" value="$resolution"/><integer name="temporal_bins" value="1"/>'
+                  '<float name="start_opl" value="0"/><float name="bin_width_opl" value="1e7"/>'
+                  '<boolean name="write_frames" value="false"/><rfilter type="box"/></film>', text, flags=re.S)
+    open(os.path.join(d, "scene.xml"), "w").write(text)
+    for name in ("integrator-transient_path.xml", "integrator-transient_beams.xml"):
+        open(os.path.join(d, name), "w").write(open(os.path.join(SUITE, name)).read())
+    if not os.path.exists(os.path.join(d, "meshes")):
+        os.symlink(os.path.join(LAJOLLA, "meshes"), os.path.join(d, "meshes"))
+    return os.path.join(d, "scene.xml")
+
+
 def cases(out_dir, quick):
     fog = os.path.join(ROOT, "scenes", "cornell-box-fog", "scene.xml")
     s = 1 if quick else 2  # budget scale
@@ -135,6 +163,10 @@ def cases(out_dir, quick):
         dict(name="box, light outside", scene=os.path.join(RADIUS_CASES, "bounded_box.xml"), defines={},
              path=dict(spp=256 * s), beams=dict(passes=2 * s, spp=16), reference_spp=8192),
     ]
+    if os.path.exists(os.path.join(LAJOLLA, "vol_cbox.xml")):
+        # A real scene in millimetres, steady (one bin): thin fog (sigma_t 1.5e-3 per mm) and walls.
+        list_.append(dict(name="lajolla fog box (steady)", scene=lajolla_scene(out_dir), defines={},
+                          path=dict(spp=128 * s), beams=dict(passes=4 * s, spp=2), reference_spp=4096))
     if os.path.exists(os.path.join(TOF, "reference.npy")):
         list_.append(dict(name="ToF-Tungsten port", scene=tof_scene(out_dir), defines=dict(resolution=64),
                           path=dict(spp=16 * s), beams=dict(passes=2 * s, spp=2), reference="tof"))
