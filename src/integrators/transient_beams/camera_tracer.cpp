@@ -227,10 +227,9 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
   // Only photons that arrived on the side the camera sees.
   const Vec3f toCamera = si.toWorld(si.wi);
   const Normal3f side = dot(si.n, toCamera) >= 0.0f ? si.n : -si.n;
-  // The disc's area on this surface (surface_coverage.h): past an edge it
-  // holds no photons.
-  const double covered = std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare);
-  const double norm = 1.0 / (double(Pi) * double(r) * double(r) * covered * double(maps_.photonCount));
+  // Over the disc's area on this surface (surface_coverage.h: past an edge
+  // it holds no photons), counted once a photon contributes.
+  double norm = 0.0;
   const double horizon = recorder.horizon();
   for (uint32_t index : scratch_) {
     const SurfacePhoton& photon = maps_.photons.photons()[index];
@@ -244,6 +243,9 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
     // eval() includes |cos wo|: divide it out to get f (Jensen's estimate uses f alone).
     Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
     if (f.isBlack()) continue;
+    if (norm == 0.0)
+      norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
+                    std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
     recorder.addPulsed(opl, opl, s.throughput * f * photon.power * float(norm),
                        scene.emitters()[photon.emitter]->pulse());
   }
