@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include <femto/math/pcg32.h>
 #include <femto/render/bsdf.h>
