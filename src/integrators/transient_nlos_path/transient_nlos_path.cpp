@@ -104,6 +104,9 @@ class TransientNlosPath final : public TransientIntegrator {
     props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
   }
 
+  /// The laser nested in the capture meter is this integrator's light (laserOf).
+  bool tracesNestedLaser() const override { return true; }
+
   /// Checks the set-up once, before any tile runs, so a wrong scene fails
   /// with one message instead of rendering black.
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {

@@ -38,6 +38,10 @@ class Integrator : public Object {
  public:
   ObjectKind kind() const override { return ObjectKind::Integrator; }
   virtual RenderStats render(const Scene& scene, const RenderOptions& options) const = 0;
+  /// Does render() trace the laser an NLOS capture meter holds
+  /// (NlosSensor::nestedLaser)? One that does not would render such a scene
+  /// black: the scene refuses the pair (scene.cpp).
+  virtual bool tracesNestedLaser() const { return false; }
 };
 
 class SamplingIntegrator : public Integrator {

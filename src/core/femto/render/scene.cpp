@@ -50,6 +50,11 @@ Scene::Scene(const Properties& props) {
       throw Error(props.location(), str(sensor_->toString(), " measures on a shape: nest it inside a <shape>"));
   }
   integrator_ = nestedOrDefault<Integrator>(props, ObjectKind::Integrator, "path");
+  if (auto* nlos = dynamic_cast<const NlosSensor*>(sensor_.get());
+      nlos && nlos->nestedLaser() && !integrator_->tracesNestedLaser())
+    throw Error(props.location(),
+                str("the capture meter holds its laser, which only transient_nlos_path traces; ",
+                    integrator_->toString(), " would render the scene black"));
   // mitransient gives the time filter to the integrator; femto's film owns it.
   if (auto* transient = dynamic_cast<const TransientIntegrator*>(integrator_.get()))
     if (const auto& filter = transient->requestedTimeFilter())

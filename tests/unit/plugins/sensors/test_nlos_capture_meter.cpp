@@ -15,9 +15,10 @@ using namespace femto;
 
 namespace {
 
-std::shared_ptr<Scene> loadCapture(const std::string& wall, const std::string& meter, const std::string& extra = "") {
+std::shared_ptr<Scene> loadCapture(const std::string& wall, const std::string& meter, const std::string& extra = "",
+                                   const std::string& integrator = "transient_nlos_path") {
   return test::loadSceneStrict(
-      str("<scene version=\"3.0.0\">\n<integrator type=\"transient_nlos_path\"/>\n", wall,
+      str("<scene version=\"3.0.0\">\n<integrator type=\"", integrator, "\"/>\n", wall,
           "\n<sensor type=\"nlos_capture_meter\">\n", meter,
           "<emitter type=\"projector\"><float name=\"fov\" value=\"0.2\"/></emitter>\n"
           "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" "
@@ -71,6 +72,10 @@ TEST(NlosCaptureMeter, BadSetUpsFailNamingTheLineAndWhatToDo) {
                      "nlos.xml:5", "either laser_lookat_pixel or laser_lookat_3d");
   EXPECT_SCENE_ERROR(loadCapture(Wall, "<transform name=\"to_world\"><translate x=\"1\"/></transform>\n"), "nlos.xml:5",
                      "sits at sensor_origin");
+  // Only transient_nlos_path traces the nested laser: the others would render black.
+  for (const char* other : {"transient_path", "transient_beams", "path"})
+    EXPECT_SCENE_ERROR(loadCapture(Wall, "", "", other), "nlos.xml:1",
+                       "the capture meter holds its laser, which only transient_nlos_path traces");
   // A second light besides the nested laser, and a wall without a uv square, fail before rendering.
   RenderOptions options;
   options.progress = false;
