@@ -99,6 +99,17 @@ def tof_reference():
     return ref.reshape(h // 2, 2, w // 2, 2, bins, c).mean(axis=(1, 3)), 0.0
 
 
+def write_scene_copy(d, text, source):
+    """Write `text` as d/scene.xml beside the suite's integrator files and a
+    link to the meshes of the scene's `source` folder; returns its path."""
+    open(os.path.join(d, "scene.xml"), "w").write(text)
+    for name in ("integrator-transient_path.xml", "integrator-transient_beams.xml"):
+        open(os.path.join(d, name), "w").write(open(os.path.join(SUITE, name)).read())
+    if not os.path.exists(os.path.join(d, "meshes")):
+        os.symlink(os.path.join(source, "meshes"), os.path.join(d, "meshes"))
+    return os.path.join(d, "scene.xml")
+
+
 def tof_scene(out_dir):
     """The port with the suite's integrator files: a copy of its scene.xml
     whose <integrator> is the suite's include, beside links to its meshes."""
@@ -108,12 +119,7 @@ def tof_scene(out_dir):
     text = re.sub(r'<integrator type="\$integrator">.*?</integrator>',
                   '<include filename="integrator-$integrator.xml"/>', text, flags=re.S)
     text = text.replace('<rfilter type="box"/>', '<boolean name="write_frames" value="false"/>\n      <rfilter type="box"/>')
-    open(os.path.join(d, "scene.xml"), "w").write(text)
-    for name in ("integrator-transient_path.xml", "integrator-transient_beams.xml"):
-        open(os.path.join(d, name), "w").write(open(os.path.join(SUITE, name)).read())
-    if not os.path.exists(os.path.join(d, "meshes")):
-        os.symlink(os.path.join(TOF, "meshes"), os.path.join(d, "meshes"))
-    return os.path.join(d, "scene.xml")
+    return write_scene_copy(d, text, TOF)
 
 
 def lajolla_scene(out_dir):
@@ -134,12 +140,7 @@ def lajolla_scene(out_dir):
                   '<integer name="height" value="$resolution"/><integer name="temporal_bins" value="1"/>'
                   '<float name="start_opl" value="0"/><float name="bin_width_opl" value="1e7"/>'
                   '<boolean name="write_frames" value="false"/><rfilter type="box"/></film>', text, flags=re.S)
-    open(os.path.join(d, "scene.xml"), "w").write(text)
-    for name in ("integrator-transient_path.xml", "integrator-transient_beams.xml"):
-        open(os.path.join(d, name), "w").write(open(os.path.join(SUITE, name)).read())
-    if not os.path.exists(os.path.join(d, "meshes")):
-        os.symlink(os.path.join(LAJOLLA, "meshes"), os.path.join(d, "meshes"))
-    return os.path.join(d, "scene.xml")
+    return write_scene_copy(d, text, LAJOLLA)
 
 
 def cases(out_dir, quick):
