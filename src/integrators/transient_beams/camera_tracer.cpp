@@ -1,6 +1,6 @@
 #include <transient_beams/camera_tracer.h>
-#include <algorithm>
 
+#include <algorithm>
 #include <cmath>
 
 #include <femto/math/constants.h>

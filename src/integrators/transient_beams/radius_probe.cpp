@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <femto/math/pcg32.h>
 #include <femto/render/film.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
@@ -46,16 +47,22 @@ void appendProbes(const Scene& scene, const Point2f& filmPos, double horizon, bo
 
 }  // namespace
 
-std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime, int grid) {
-  std::vector<ProbeSegment> probes;
+std::vector<Point2f> filmGrid(const Scene& scene, int grid, PCG32* jitter) {
+  std::vector<Point2f> positions;
   const Film& film = scene.sensor().film();
   const Point2i offset = film.cropOffset(), size = film.cropSize();
   for (int j = 0; j < grid; ++j)
-    for (int i = 0; i < grid; ++i)
-      appendProbes(scene,
-                   Point2f(float(offset.x) + float(size.x) * (float(i) + 0.5f) / float(grid),
-                           float(offset.y) + float(size.y) * (float(j) + 0.5f) / float(grid)),
-                   horizon, observerTime, probes);
+    for (int i = 0; i < grid; ++i) {
+      const float u = jitter ? jitter->nextFloat() : 0.5f, v = jitter ? jitter->nextFloat() : 0.5f;
+      positions.emplace_back(float(offset.x) + float(size.x) * (float(i) + u) / float(grid),
+                             float(offset.y) + float(size.y) * (float(j) + v) / float(grid));
+    }
+  return positions;
+}
+
+std::vector<ProbeSegment> probeSegments(const Scene& scene, double horizon, bool observerTime, int grid) {
+  std::vector<ProbeSegment> probes;
+  for (const Point2f& filmPos : filmGrid(scene, grid)) appendProbes(scene, filmPos, horizon, observerTime, probes);
   return probes;
 }
 

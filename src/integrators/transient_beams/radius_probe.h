@@ -11,10 +11,16 @@
 #include <transient_beams/radius_rule.h>
 
 namespace femto {
+class PCG32;
 class Scene;
-}
+}  // namespace femto
 
 namespace femto::beams {
+
+/// One film position (pixel units) in each of grid x grid cells of the
+/// crop window, row by row: the cell centres, or, with `jitter`, a point
+/// drawn from it in each cell. Shared by the beams' and the surfaces' probes.
+std::vector<Point2f> filmGrid(const Scene& scene, int grid, PCG32* jitter = nullptr);
 
 /// Probes through grid x grid film positions (cell centres of the crop
 /// window, aperture centre); unbounded pieces end as camera segments do

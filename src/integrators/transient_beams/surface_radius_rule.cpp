@@ -5,10 +5,10 @@
 
 #include <femto/math/pcg32.h>
 #include <femto/render/bsdf.h>
-#include <femto/render/film.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
 #include <femto/transport/volumetric.h>
+#include <transient_beams/radius_probe.h>
 
 namespace femto::beams {
 
@@ -60,20 +60,11 @@ double median(std::vector<double> values) {
 
 std::vector<SurfaceProbe> surfaceProbes(const Scene& scene, int grid) {
   std::vector<SurfaceProbe> probes;
-  const Film& film = scene.sensor().film();
-  const Point2i offset = film.cropOffset(), size = film.cropSize();
   // Jittered within the cells: a view framed on the scene's edges (the fog
   // box's opening) would otherwise put a whole row of cell centres at the
   // same distance from an edge.
   PCG32 rng(0x5eed, 17);
-  for (int j = 0; j < grid; ++j)
-    for (int i = 0; i < grid; ++i) {
-      const float u = rng.nextFloat(), v = rng.nextFloat();
-      appendProbe(scene,
-                  Point2f(float(offset.x) + float(size.x) * (float(i) + u) / float(grid),
-                          float(offset.y) + float(size.y) * (float(j) + v) / float(grid)),
-                  probes);
-    }
+  for (const Point2f& filmPos : filmGrid(scene, grid, &rng)) appendProbe(scene, filmPos, probes);
   return probes;
 }
 
