@@ -12,16 +12,16 @@ namespace {
 constexpr float MaxUniform = 0x1.fffffep-1f;
 }  // namespace
 
-BeamRoulette BeamRoulette::of(const Medium& medium) {
+BeamRoulette BeamRoulette::of(const Medium& medium, float tau) {
   if (!medium.isHomogeneous()) return BeamRoulette();
   const Color3f sigmaT = medium.majorant();  // a homogeneous medium's extinction
-  return BeamRoulette(std::min(sigmaT.r, std::min(sigmaT.g, sigmaT.b)));
+  return BeamRoulette(std::min(sigmaT.r, std::min(sigmaT.g, sigmaT.b)), tau);
 }
 
-BeamRoulette::BeamRoulette(float sigma) {
-  if (!(sigma > 0.0f) || !std::isfinite(sigma)) return;
+BeamRoulette::BeamRoulette(float sigma, float tau) {
+  if (!(sigma > 0.0f) || !std::isfinite(sigma) || !(tau > 0.0f && tau <= 1.0f)) return;
   sigma_ = sigma;
-  start_ = std::log(1.0f / Tau) / sigma;
+  start_ = std::log(1.0f / tau) / sigma;
 }
 
 float BeamRoulette::sampleLength(float u) const {

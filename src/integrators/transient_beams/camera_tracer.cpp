@@ -139,9 +139,16 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   if (q < 1.0f && !(sampler.next1D() < q)) return;
   const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
   const Medium& medium = *s.medium;
+  // Russian roulette along the segment (beam_roulette.h, "Along a camera
+  // segment"): past where T_cam falls to GatherTau the query reaches a random
+  // length and its pairs weigh 1 / S(tRay). Only drawn when the segment
+  // reaches that far, so thin media render exactly as without it.
+  const BeamRoulette roulette = BeamRoulette::of(medium, BeamRoulette::GatherTau);
+  // ...and the beams here were ended by the beams' roulette of this medium.
+  const BeamRoulette beamRoulette = BeamRoulette::of(medium);
   CameraSegment segment;
   segment.ray = Ray(s.vertex, s.ray.d);  // from the exact vertex, where the path's OPL is s.opl
-  segment.tMax = tMax;
+  segment.tMax = tMax > roulette.start() ? std::min(tMax, roulette.sampleLength(sampler.next1D())) : tMax;
   // Observer time off: the camera's first segment adds no OPL (its beams
   // then show where light is, not when the camera sees it).
   segment.eta = segmentCounts(settings_.observerTime, s.cameraSegment) ? medium.eta() : 0.0f;
@@ -159,8 +166,6 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const double horizon = recorder.horizon();
   const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
   const PhaseFunction& phase = medium.phase();
-  // The beams here were ended by this medium's roulette (beam_roulette.h).
-  const BeamRoulette roulette = BeamRoulette::of(medium);
   for (uint32_t index : scratch_) {
     const Beam& beam = beams[index];
     // Beams of another medium overlapping this one (nested media) do not scatter here.
@@ -177,10 +182,10 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     Color3f value = s.throughput * medium.scatteringCoefficient(x) * fp * beam.power *
                     float(double(hit.kernel) * invPhotons * gatherWeight);
     if (value.isBlack()) continue;
-    value *= medium.transmittance(segment.ray, hit.tRay, sampler);
+    value *= medium.transmittance(segment.ray, hit.tRay, sampler) * roulette.inverseSurvival(hit.tRay);
     if (!points) {
       value *= medium.transmittance(Ray(beam.origin, beam.direction), hit.tBeam, sampler) *
-               roulette.inverseSurvival(hit.tBeam);
+               beamRoulette.inverseSurvival(hit.tBeam);
       // On an extension (boundary_extension.h) the density continues. The
       // point's parameter against its own clamp: exactly 0 on the beam
       // (hit.tBeam, computed another way, differs by rounding there), so

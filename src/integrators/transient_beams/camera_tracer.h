@@ -7,9 +7,10 @@
 // way every piece inside a medium gathers the beams passing within the
 // kernel radius (rayBeamIntersect): each pair adds
 //
-//   throughput sigma_s(x) f_p(-ray.d, -beam.d) T_cam(tRay) T_beam(tBeam) / S(tBeam) Phi kernel / N
+//   throughput sigma_s(x) f_p(-ray.d, -beam.d) T_cam(tRay) / S(tRay) T_beam(tBeam) / S(tBeam) Phi kernel / N
 //
-// (S: the probability that the beam's Russian roulette let it reach tBeam, beam_roulette.h)
+// (S: the probability that the Russian roulette of the beam, or of the
+// segment's gather, let it reach tBeam or tRay, beam_roulette.h)
 // spread over the pair's OPL interval (camera OPL + beam OPL + overlap), N the
 // photons traced in the pass. With volume_estimator = "points" the map holds
 // photon points (zero-length beams) and each point within the radius of the

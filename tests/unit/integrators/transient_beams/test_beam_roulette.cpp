@@ -2,8 +2,10 @@
 // the truncated, reweighted beam integrates any function of the beam
 // parameter to the long beam's integral of it times the transmittance, in
 // every channel; survival is the empirical probability of reaching s; the
-// mean length is (ln(1/Tau) + 1) / sigma. Tolerances: 5 standard errors of
-// the sample means (the Monte Carlo estimators' own spread).
+// mean length is (ln(1/Tau) + 1) / sigma; a camera segment's gather ended by
+// the roulette still gathers the blurred beam's exact value. Tolerances: 5
+// standard errors of the sample means (the Monte Carlo estimators' own
+// spread), plus a derived bound where the estimate evaluates at a point.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +13,7 @@
 
 #include <femto/math/pcg32.h>
 #include <transient_beams/beam_roulette.h>
+#include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
 namespace {
@@ -96,6 +99,66 @@ TEST(BeamRoulette, SurvivalIsTheProbabilityOfReachingAPoint) {
   }
   // E[lambda] = s0 + 1 / sigma.
   EXPECT_NEAR(length.mean(), (std::log(1.0 / BeamRoulette::Tau) + 1.0) / sigma, 5.0 * length.standardError());
+}
+
+/// One camera gather along +x from the origin, ended by the roulette at
+/// `lambda`, of a long beam crossing the x axis at `crossing` (angle `theta`
+/// to it) with offset `offset` along z (the lines' distance): the pair's
+/// kernel times T_cam(tRay) / S(tRay), as gatherBeams weighs it.
+double gatherOnce(const BeamRoulette& roulette, float sigma, float lambda, float crossing, float theta, float offset,
+                  float radius, float tMax) {
+  CameraSegment segment;
+  segment.ray = Ray(Point3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f));
+  segment.tMax = std::min(tMax, lambda);
+  Beam beam;
+  beam.direction = Vec3f(std::cos(theta), std::sin(theta), 0.0f);
+  const float half = 50.0f;  // long: its ends never reach the kernel
+  beam.origin = Point3f(crossing, 0.0f, offset) - beam.direction * half;
+  beam.length = 2.0f * half;
+  RayBeamHit hit;
+  if (!rayBeamIntersect(segment, beam, radius, hit)) return 0.0;
+  return double(hit.kernel) * std::exp(-double(sigma) * hit.tRay) * roulette.inverseSurvival(hit.tRay);
+}
+
+TEST(BeamRoulette, AGatherEndedByTheRouletteKeepsTheBlurredBeam) {
+  // The blurred beam's value for one pass at offset d: the chord of the
+  // kernel cylinder, t_c +- h(d), h(d) = sqrt(r^2 - d^2) / sin(theta),
+  // integrated against T_cam = e^{-sigma t} over the disc's area pi r^2;
+  // averaged over offsets uniform in [-D, D] (the 1D kernel is unbiased on
+  // that average, docs/photon-beams.md "Kernel value"). Crossings before,
+  // at and past s0 = ln(1 / GatherTau) / sigma, where the gather's roulette
+  // starts.
+  const float sigma = 1.0f, radius = 0.002f, tMax = 20.0f, spread = 1.5f * radius;
+  const BeamRoulette roulette(sigma, BeamRoulette::GatherTau);
+  const float s0 = std::log(1.0f / BeamRoulette::GatherTau) / sigma;
+  struct Crossing {
+    float at, theta;
+  };
+  const Crossing crossings[] = {{0.5f * s0, 1.0f}, {s0, 1.0f}, {s0 + 1.5f / sigma, 1.0f}, {s0 + 3.0f / sigma, 0.35f}};
+  PCG32 rng(23, 9);
+  const int samples = 400000;
+  for (const Crossing& c : crossings) {
+    Mean gathered;
+    int ended = 0;
+    for (int i = 0; i < samples; ++i) {
+      const float offset = spread * (2.0f * rng.nextFloat() - 1.0f);
+      const float lambda = roulette.sampleLength(rng.nextFloat());
+      ended += lambda < c.at;
+      gathered.add(gatherOnce(roulette, sigma, lambda, c.at, c.theta, offset, radius, tMax));
+    }
+    const double sinT = std::sin(double(c.theta)), r = radius;
+    auto blurred = [&](double d) {
+      const double h = std::sqrt(std::max(0.0, r * r - d * d)) / sinT;
+      return (std::exp(-sigma * (c.at - h)) - std::exp(-sigma * (c.at + h))) / (sigma * Pi * r * r);
+    };
+    const double exact = simpson(blurred, -r, r) / (2.0 * spread);
+    // The 1D kernel evaluates T_cam / S at one point of a chord of half
+    // length h <= r / sin(theta): T / S changes by at most a factor
+    // e^{sigma h} across it (also where S has its kink, at s0).
+    const double pointBound = std::expm1(sigma * r / sinT) * exact;
+    EXPECT_NEAR(gathered.mean(), exact, 5.0 * gathered.standardError() + pointBound) << "crossing at " << c.at;
+    if (c.at > s0) EXPECT_GT(ended, samples / 20) << "the roulette must end some gathers before the beam";
+  }
 }
 
 TEST(BeamRoulette, InactiveRouletteNeverTruncates) {
