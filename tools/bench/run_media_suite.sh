@@ -41,14 +41,15 @@ load_after=$(cut -d' ' -f1-3 /proc/loadavg)
   echo "- commit: $commit$dirty, $(date -u +%Y-%m-%d)"
   echo "- command: \`tools/bench/media_suite.py${MEDIA_QUICK:+ --quick}\`${MEDIA_NOTE:+; $MEDIA_NOTE}"
   echo
-  echo "One render per integrator and scene (seed 1) at the budget shown; relMSE (ε = 0.01) against the"
+  echo "One render per integrator and scene (seed 1) at the budget shown, its CPU time the median of 3"
+  echo "runs of that render; relMSE (ε = 0.01) against the"
   echo "mean of two long \`transient_path\` renders (seeds 7919, 7920) with the reference's own error,"
   echo "estimated from their difference, subtracted; for the ToF-Tungsten port against ToF-Tungsten's"
   echo "8192-spp volume averaged over 2×2 pixels (the port is rendered at 64×64, half its resolution)."
   echo "CPU: user + system seconds of the femto process. *relMSE×CPU path / beams* is the ratio of the"
   echo "two integrators' relMSE at equal CPU time (> 1: beams better). Images are small (32×32) to fit"
   echo "the machine; the scenes' files say what each one is. transient_beams runs with its defaults"
-  echo "(the radius it derives, Russian roulette along beams) except the scene's"
+  echo "(the radius it derives, Russian roulette along beams and camera segments) except the scene's"
   echo "\`store\` and \`max_depth\` and the camera samples per pass shown (\`spp\`; the fog box uses its"
   echo "scene file's settings)."
   echo
