@@ -43,6 +43,8 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   s.surfaceRadius = props.getFloat("surface_radius", 0.0f, Range::nonNegative(), radiusNote);
   s.gatherFraction = props.getFloat("gather_fraction", s.gatherFraction, Range::leftOpen(0, 1),
                                     "the probability that a camera segment gathers beams");
+  s.gatherRoulette = props.getFloat("gather_roulette", s.gatherRoulette, Range::closed(0, 1),
+                                    "the camera transmittance at which a gather's Russian roulette starts; 0: never");
   s.alpha = props.getFloat("alpha", s.alpha, Range::leftOpen(0, 1));
   static_cast<PathDepthSettings&>(s) = PathDepthSettings::read(props);
   s.store = props.getEnum(

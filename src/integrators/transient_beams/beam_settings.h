@@ -12,6 +12,7 @@
 #include <femto/math/constants.h>
 #include <femto/render/path_depth.h>
 #include <transient_beams/beam.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/radius_rule.h>
 
 namespace femto::beams {
@@ -52,7 +53,8 @@ struct BeamSettings : PathDepthSettings {
   float radius = 0.0f;                // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
   float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
   float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
-  float alpha = 0.9f;                 // progressive radius reduction, in (0, 1] (docs/photon-beams.md: why 0.9)
+  float gatherRoulette = BeamRoulette::GatherTau;  // T_cam where a gather's Russian roulette starts (0: never)
+  float alpha = 0.9f;  // progressive radius reduction, in (0, 1] (docs/photon-beams.md: why 0.9)
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;   // the camera segment counts toward the OPL

@@ -140,10 +140,10 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
   const Medium& medium = *s.medium;
   // Russian roulette along the segment (beam_roulette.h, "Along a camera
-  // segment"): past where T_cam falls to GatherTau the query reaches a random
-  // length and its pairs weigh 1 / S(tRay). Only drawn when the segment
-  // reaches that far, so thin media render exactly as without it.
-  const BeamRoulette roulette = BeamRoulette::of(medium, BeamRoulette::GatherTau);
+  // segment"): past where T_cam falls to gather_roulette the query reaches a
+  // random length and its pairs weigh 1 / S(tRay). Only drawn when the
+  // segment reaches that far, so thin media render exactly as without it.
+  const BeamRoulette roulette = BeamRoulette::of(medium, settings_.gatherRoulette);
   // ...and the beams here were ended by the beams' roulette of this medium.
   const BeamRoulette beamRoulette = BeamRoulette::of(medium);
   CameraSegment segment;

@@ -26,6 +26,9 @@
 // |                |         |                | more when the derived radius is below the density radius  |        |
 // | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
 // |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
+// | gather_roulette | float  | 0.05           | camera transmittance at which a segment's gather starts   | -      |
+// |                |         |                | an unbiased Russian roulette along it (homogeneous media; |        |
+// |                |         |                | beam_roulette.h); 0: gathers reach the segment's end      |        |
 // | radius         | float   | derived        | beam kernel radius of the first pass; 0 or absent: the    | scene  |
 // |                |         |                | smallest of ~300 pass-0 beams per camera segment, a 4-bin |        |
 // |                |         |                | OPL footprint (oblique pairs too), 0.4 % boundary loss    |        |

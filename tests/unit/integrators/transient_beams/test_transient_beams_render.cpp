@@ -246,6 +246,19 @@ TEST(TransientBeamsRender, PhotonPointsOutputDoesNotDependOnTheThreadCount) {
                                "points-threads");
 }
 
+TEST(TransientBeamsRender, GatherRouletteKeepsTheExpectation) {
+  // gather_roulette = 1: every camera segment's gather ends at a free-flight
+  // distance past its start (beam_roulette.h, "Along a camera segment"), its
+  // pairs weighed by 1 / S; 0: gathers reach the segment's end. The same
+  // volume within noise, per bin, with no bias allowance (the fog is grey:
+  // a kernel clipped at the roulette's end is exact in expectation). Without
+  // the 1 / S weight the fog's light comes out too dim, and this test fails.
+  auto ended = loadSceneStrict(foggyRoom(str(BeamParams, R"(<float name="gather_roulette" value="1"/>)")));
+  auto full = loadSceneStrict(foggyRoom(str(BeamParams, R"(<float name="gather_roulette" value="0"/>)")));
+  expectAgree(imageSums(ended, "beams-roulette-1", 8), imageSums(full, "beams-roulette-0", 8),
+              "gather_roulette 1 vs 0");
+}
+
 TEST(TransientBeamsRender, PassesAverageIntoTheFilmWithShrinkingRadii) {
   // Two passes (radius r, then alpha r; surface radius sqrt(alpha) r_s) equal
   // the mean of the two one-pass renders that use those radii and seeds.
@@ -291,6 +304,8 @@ TEST(TransientBeamsRender, BadParametersNameTheFileAndLine) {
               "\"passes\" of \"transient_beams\": must be in [1, 1000000], got 0");
   expectError(R"(<integer name="photon_count" value="0"/>)", "\"photon_count\"");
   expectError(R"(<string name="volume_estimator" value="rays"/>)", "\"volume_estimator\"");
+  expectError(R"(<float name="gather_roulette" value="1.5"/>)",
+              "\"gather_roulette\" of \"transient_beams\": must be in [0, 1]");
 }
 
 TEST(TransientBeamsRender, ShippedFogCornellBoxRendersWithTransientBeams) {
