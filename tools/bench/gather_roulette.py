@@ -52,12 +52,13 @@ def main(argv):
     p.add_argument("--femto", default=os.path.join(media_suite.ROOT, "build", "bin", "femto"))
     p.add_argument("--out", default=os.path.join(media_suite.ROOT, "build", "media-suite"))
     p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--only", help="run only the scenes whose name contains this")
     args = p.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     start = os.getloadavg()
     lines = []
     for case in media_suite.cases(args.out, quick=False):
-        if case["name"] not in SCENES:
+        if case["name"] not in SCENES or (args.only and args.only not in case["name"]):
             continue
         print(f"{case['name']}:", file=sys.stderr, flush=True)
         if case.get("reference") == "tof":
