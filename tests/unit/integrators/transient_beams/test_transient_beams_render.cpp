@@ -240,6 +240,14 @@ TEST(TransientBeamsRender, OutputDoesNotDependOnTheThreadCount) {
   expectSameOnOneAndTwoThreads(str(BeamParams, R"(<integer name="passes" value="2"/>)"), "beams-threads");
 }
 
+TEST(TransientBeamsRender, GatherRouletteOutputDoesNotDependOnTheThreadCount) {
+  // gather_roulette 1: every gather draws its roulette length from the camera
+  // sample's own stream.
+  expectSameOnOneAndTwoThreads(
+      str(BeamParams, R"(<integer name="passes" value="2"/><float name="gather_roulette" value="1"/>)"),
+      "beams-roulette-threads");
+}
+
 TEST(TransientBeamsRender, PhotonPointsOutputDoesNotDependOnTheThreadCount) {
   expectSameOnOneAndTwoThreads(str(BeamParams, R"(<integer name="passes" value="2"/>
     <string name="volume_estimator" value="points"/>)"),
