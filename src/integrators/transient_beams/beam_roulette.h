@@ -53,12 +53,12 @@
 // behind, attenuated by T_cam. In an optically thick medium a camera segment
 // many mean free paths long then pays for the beams within about
 // ln(1 / GatherTau) + 1 = 4 mean free paths of where it enters instead of
-// every beam along it (the media suite's thick medium: 3.7x fewer pairs).
+// every beam along it (the media suite's thick medium: 3.8x fewer candidates).
 // Why 5 % and not the beams' 25 %: time bins. A bin whose light comes only
 // from past s0 along the camera rays (single scattering far down a segment:
 // its OPL grows with t) has its variance multiplied by up to 1 / S(t) =
 // e^{sigma (t - s0)}, which no other sample of the pixel offsets. At 25 % the
-// media suite's large medium (single scattering, camera inside) lost 1.4x in
+// media suite's large medium (single scattering, camera inside) lost 1.5x in
 // relMSE and a single-ray closed-form test saw late bins no pass reached; at
 // 5 % (s0 = 3 mean free paths) both are as without it, and the thick
 // medium's earliest 1 % of light, which only the deepest points see, keeps
