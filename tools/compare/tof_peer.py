@@ -15,6 +15,16 @@ transient_beams' default (the port's max_depth 64). With --seeds N each
 budget is rendered with seeds 1..N and the row gives the median CPU,
 relMSE and relMSE x CPU (one render's relMSE scatters by about 2x between
 seeds on this scene), with the range of relMSE x CPU.
+
+With --seeds 2 or more a second table splits each budget's relMSE against
+the reference into femto's own noise and what is left, the "floor": one
+render's variance term from the seeds' spread (mean over pairs of the
+weighted (x_i - x_j)^2 / 2, the same weights 1 / (ref^2 + eps mean^2) as
+relMSE), and floor = relMSE(mean of the N renders) - variance / N. The
+floor is what no number of femto samples removes: the reference's own
+Monte Carlo error plus femto's squared bias, weighted alike; a floor that
+stays put as the passes (and the kernel radius) change, and lies evenly over
+the image, is the reference's.
 """
 import argparse
 import os
@@ -28,6 +38,18 @@ from provenance import commit, cpu_model, load_line  # noqa: E402
 
 # ToF-Tungsten's beams as its README reports them: (passes, CPU s, relMSE).
 PEER = [(4, 9.8, 24.5), (16, 32.1, 21.2), (64, 103.0, 4.09)]
+
+
+def noise_floor(volumes, ref):
+    """(one render's variance term, relMSE of the renders' mean, floor): the
+    module docstring's split, in relMSE's weights."""
+    weight = 1.0 / (ref**2 + media_suite.EPSILON * ref.mean() ** 2)
+    n = len(volumes)
+    pairs = [float(np.mean((volumes[i] - volumes[j]) ** 2 * weight)) / 2.0
+             for i in range(n) for j in range(i + 1, n)]
+    variance = float(np.mean(pairs))
+    of_mean = media_suite.relmse(sum(volumes) / n, ref)
+    return variance, of_mean, of_mean - variance / n
 
 
 def main(argv):
@@ -45,6 +67,7 @@ def main(argv):
     scene = media_suite.tof_scene(args.out)
     ref = np.load(os.path.join(media_suite.TOF, "reference.npy")).astype(np.float64)
     extra = dict(d.split("=", 1) for d in args.define)
+    floors = []
     load_start = os.getloadavg()
     print(f"- machine: {cpu_model()}, {os.cpu_count()} logical CPUs, shared; commit {commit()}")
     print(f"- command: `tools/compare/tof_peer.py {' '.join(argv)}`; CPU = user + system seconds of the femto process\n")
@@ -54,12 +77,13 @@ def main(argv):
         print(f"| ToF-Tungsten beams (its README) | {passes} passes | {cpu} | {e} | {cpu * e:.0f} | - | - | - | - |")
     for passes in [int(x) for x in args.passes.split(",")]:
         defines = dict(integrator="transient_beams", passes=passes, spp=args.spp, **extra)
-        runs = []
+        runs, volumes = [], []
         for seed in range(1, args.seeds + 1):
             out = os.path.join(args.out, f"beams-{passes}-{seed}.exr")
             npy, cpu, wall, log = media_suite.render(args.femto, scene, out, defines, seed=seed)
             x = np.load(npy).astype(np.float64)
             runs.append((cpu, media_suite.relmse(x, ref), x.sum() / ref.sum(), log))
+            volumes.append(x)
         cpu = float(np.median([r[0] for r in runs]))
         e = float(np.median([r[1] for r in runs]))
         products = [r[0] * r[1] for r in runs]
@@ -71,7 +95,17 @@ def main(argv):
         print(f"| femto transient_beams{' (' + note + ')' if note else ''} | {passes} passes × {args.spp} spp | "
               f"{cpu:.1f} | {e:.3g} | {float(np.median(products)):.0f}{spread} | {sums} | "
               f"{r.group(1) if r else '-'} | {m.group(1) if m else '-'} | {m.group(2) if m else '-'} |", flush=True)
+        if len(volumes) > 1:
+            floors.append((passes, noise_floor(volumes, ref), float(np.median([r[1] for r in runs]))))
+        del volumes
     print("\n" + load_line(load_start, os.getloadavg()))
+    if floors:
+        print("\nfemto's own noise and the floor (relMSE of the seeds' mean minus its variance):\n")
+        print("| budget | relMSE, one render (median) | variance, one render | relMSE of the mean | floor | floor / relMSE |")
+        print("|---|---|---|---|---|---|")
+        for passes, (variance, of_mean, floor), e in floors:
+            print(f"| {passes} passes × {args.spp} spp | {e:.3g} | {variance:.3g} | {of_mean:.3g} | {floor:.3g} | "
+                  f"{floor / e:.2f} |")
     return 0
 
 
