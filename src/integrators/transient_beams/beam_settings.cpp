@@ -119,7 +119,7 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   const bool points = volumeEstimator == VolumeEstimator::Points;
   d.density = sizedFor         ? sizedFor->density
               : probes.empty() ? spreadRadius(beams, points, sceneBounds)
-                               : densityRadius(beams, probes, TargetPairHits);
+                               : densityRadius(beams, probes, TargetPairHits, gatherRoulette);
   // The time bound at the largest index a pair's OPL can run at.
   double eta = 0.0;
   for (const ProbeSegment& p : probes) eta = std::max(eta, double(p.segment.eta));

@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <femto/math/constants.h>
 #include <femto/render/medium.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
@@ -23,7 +25,8 @@ V3 v3(const Vec3f& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
-double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Point3f& p1, const Vec3f& d1, float len1) {
+double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Point3f& p1, const Vec3f& d1, float len1,
+                       double* along0) {
   // Closest points of two segments: minimise |r + u e0 - v e1|^2 over the
   // unit square (u, v), clamping one parameter and re-solving the other.
   const V3 e0 = v3(d0) * double(len0), e1 = v3(d1) * double(len1), r = v3(p0) - v3(p1);
@@ -50,29 +53,49 @@ double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Poi
     }
   }
   const V3 gap = r + e0 * u - e1 * v;
+  if (along0) *along0 = u * double(len0);
   return std::sqrt(dot(gap, gap));
 }
 
-double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs) {
+double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs,
+                     float gatherRoulette) {
   if (probes.empty() || beams.empty()) return Infinity;
   // Every stride-th beam: each found one stands for `stride` beams.
   const size_t budget = std::max<size_t>(1, MaxDistancePairs / probes.size());
   const size_t stride = (beams.size() + budget - 1) / budget;
-  std::vector<double> distances;
-  distances.reserve(probes.size() * std::min(beams.size(), budget));
-  for (const ProbeSegment& p : probes)
+  // (distance, chance that a gather reaches the pair)
+  std::vector<std::pair<double, double>> pairs;
+  pairs.reserve(probes.size() * std::min(beams.size(), budget));
+  bool weighted = false;
+  for (const ProbeSegment& p : probes) {
+    const BeamRoulette roulette =
+        p.medium && gatherRoulette > 0.0f ? BeamRoulette::of(*p.medium, gatherRoulette) : BeamRoulette();
+    const bool reachesRoulette = p.segment.tMax > roulette.start();
+    weighted = weighted || reachesRoulette;
     for (size_t i = 0; i < beams.size(); i += stride) {
       const Beam& b = beams[i];
       if (b.medium != p.medium) continue;
-      distances.push_back(
-          segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction, b.length));
+      double along = 0.0;
+      const double d = segmentDistance(p.segment.ray.o, p.segment.ray.d, p.segment.tMax, b.origin, b.direction,
+                                       b.length, reachesRoulette ? &along : nullptr);
+      pairs.emplace_back(d, reachesRoulette ? double(roulette.survival(float(along))) : 1.0);
     }
-  // Mean pairs per probe at radius r: #{distances < r} stride / probes.
+  }
+  // Mean pairs per probe at radius r: sum of the weights of {distances < r} x stride / probes.
   const double needed = targetPairs * double(probes.size()) / double(stride);
-  const size_t k = size_t(std::ceil(needed));
-  if (k == 0 || k > distances.size()) return Infinity;
-  std::nth_element(distances.begin(), distances.begin() + ptrdiff_t(k - 1), distances.end());
-  return distances[k - 1];
+  if (!weighted) {
+    // Every weight 1: the k-th smallest distance, without a sort.
+    const size_t k = size_t(std::ceil(needed));
+    if (k == 0 || k > pairs.size()) return Infinity;
+    std::nth_element(pairs.begin(), pairs.begin() + ptrdiff_t(k - 1), pairs.end());
+    return pairs[k - 1].first;
+  }
+  if (!(needed > 0.0)) return Infinity;
+  std::sort(pairs.begin(), pairs.end());
+  double sum = 0.0;
+  for (const auto& [distance, weight] : pairs)
+    if ((sum += weight) >= needed) return distance;
+  return Infinity;
 }
 
 std::vector<NearPair> nearPairs(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double within,

@@ -34,15 +34,26 @@ struct ProbeSegment {
 };
 
 /// Distance between the segments [p0, p0 + d0 len0] and [p1, p1 + d1 len1]
-/// (unit directions; a length may be 0: a point), in double.
-double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Point3f& p1, const Vec3f& d1, float len1);
+/// (unit directions; a length may be 0: a point), in double. With `along0`,
+/// also the distance along the first segment to its closest point.
+double segmentDistance(const Point3f& p0, const Vec3f& d0, float len0, const Point3f& p1, const Vec3f& d1, float len1,
+                       double* along0 = nullptr);
 
 /// The radius within which probe segments meet `targetPairs` beams of their
 /// medium on average: the k-th smallest probe x beam distance, k = targetPairs
 /// x probes (beams subsampled evenly beyond MaxDistancePairs / probes, the
 /// count scaled back). +Infinity when even all beams together are fewer, or
 /// there are no probes. Deterministic.
-double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs);
+///
+/// With `gatherRoulette` > 0 the pairs counted are those the gathers will
+/// reach: a camera segment's query ends at the roulette's random length
+/// (beam_roulette.h, "Along a camera segment"), so a pair whose closest point
+/// lies s along the probe counts S(s), its chance to be gathered (1 before
+/// the roulette's start). Without the weight a thick medium's rule counted
+/// pairs deep inside that no gather reaches: 64 pairs per query against the
+/// 300 aimed at (media suite, session 13).
+double densityRadius(const std::vector<Beam>& beams, const std::vector<ProbeSegment>& probes, double targetPairs,
+                     float gatherRoulette = 0.0f);
 
 /// Largest radius whose pair footprint stays within TimeBinFraction bins
 /// of `grid` at refractive index `eta` (+Infinity for steady films).

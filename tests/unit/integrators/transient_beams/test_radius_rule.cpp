@@ -8,8 +8,13 @@
 #include <vector>
 
 #include <femto/math/pcg32.h>
+#include <femto/render/scene.h>
+#include <femto/render/sensor.h>
+#include <transient_beams/beam_roulette.h>
 #include <transient_beams/radius_rule.h>
 #include <transient_beams/ray_beam.h>
+
+#include "media_test_util.h"
 
 namespace femto::beams {
 namespace {
@@ -22,8 +27,9 @@ Vec3f randomDirection(PCG32& rng) {
 TEST(RadiusRule, SegmentDistanceIsTheBruteForceMinimum) {
   PCG32 rng(3, 9);
   for (int i = 0; i < 300; ++i) {
-    Point3f p0(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()), p1(rng.nextFloat(), rng.nextFloat(), rng.nextFloat());
-    Vec3f d0 = randomDirection(rng), d1 = i % 5 == 0 ? d0 : randomDirection(rng);  // some parallel
+    Point3f p0(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()),
+        p1(rng.nextFloat(), rng.nextFloat(), rng.nextFloat());
+    Vec3f d0 = randomDirection(rng), d1 = i % 5 == 0 ? d0 : randomDirection(rng);               // some parallel
     float l0 = i % 7 == 0 ? 0.0f : rng.nextFloat(), l1 = i % 11 == 0 ? 0.0f : rng.nextFloat();  // some points
     double best = 1e30;
     const int n = 400;
@@ -57,6 +63,48 @@ TEST(RadiusRule, DensityRadiusCountsTheTargetPairsPerProbe) {
   EXPECT_FALSE(std::isfinite(densityRadius(beams, probes, 5.0)));
 }
 
+TEST(RadiusRule, DensityRadiusCountsOnlyThePairsTheGathersReach) {
+  // A probe along x through a homogeneous medium (sigma_t 2, the gathers'
+  // roulette at 5 %: s0 = ln 20 / 2 = 1.50) and beams parallel to z on an
+  // A x B lattice: at x_a = (a + 1/2) L / A and offsets y_b = b / B, so the
+  // pair (a, b) lies at distance y_b, s = x_a along the probe. A gather
+  // reaches it with probability S(x_a), so the radius meeting T pairs is the
+  // smallest y_b with b sum_a S(x_a) >= T, and sum_a S(x_a) ~ (A / L)
+  // (s0 + (1 - exp(-sigma (L - s0))) / sigma) (midpoint rule, error << 1 %).
+  const float sigma = 2.0f, tau = 0.05f, L = 4.0f;
+  std::shared_ptr<Scene> scene = test::loadSceneStrict(R"(<scene version="3.0.0">
+  <medium id="m" type="homogeneous"><float name="sigma_t" value="2"/></medium>
+  <sensor type="perspective"><ref id="m"/></sensor></scene>)");
+  const Medium* medium = scene->sensor().medium();
+  ASSERT_NE(medium, nullptr);
+  const int A = 400, B = 1000;
+  std::vector<Beam> beams;
+  for (int a = 0; a < A; ++a)
+    for (int b = 1; b <= B; ++b) {
+      Beam beam;
+      beam.origin = Point3f((float(a) + 0.5f) * L / float(A), float(b) / float(B), -1.0f);
+      beam.direction = Vec3f(0.0f, 0.0f, 1.0f), beam.length = 2.0f, beam.medium = medium;
+      beams.push_back(beam);
+    }
+  std::vector<ProbeSegment> probes(1);
+  probes[0].segment.ray = Ray(Point3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f));
+  probes[0].segment.tMax = L, probes[0].medium = medium;
+  const double target = 5000.0;
+  const double s0 = std::log(1.0 / tau) / sigma;
+  const double reached = double(A) / L * (s0 + (1.0 - std::exp(-sigma * (L - s0))) / sigma);
+  EXPECT_NEAR(BeamRoulette::of(*medium, tau).start(), s0, 1e-5);
+  // ceil(5000 / 199.4) = 26 offsets against ceil(5000 / 400) = 13 unweighted.
+  EXPECT_NEAR(densityRadius(beams, probes, target, tau), std::ceil(target / reached) / B, 0.5 / B);
+  EXPECT_NEAR(densityRadius(beams, probes, target), std::ceil(target / A) / B, 0.5 / B)
+      << "no roulette: every pair counts";
+  EXPECT_NEAR(densityRadius(beams, probes, target, 0.0f), std::ceil(target / A) / B, 0.5 / B);
+  // A probe that ends before s0 is gathered whole: no weight. (Its end adds
+  // the beams just past x = 1.2, a few offsets' worth at these radii.)
+  probes[0].segment.tMax = 1.2f;
+  EXPECT_EQ(densityRadius(beams, probes, target, tau), densityRadius(beams, probes, target));
+  EXPECT_NEAR(densityRadius(beams, probes, target, tau), std::ceil(target / (A * 1.2 / L)) / B, 2.0 / B);
+}
+
 TEST(RadiusRule, TimeAndBoundaryRadiiFollowTheirFormulas) {
   TimeGrid grid;
   grid.bins = 100, grid.binWidth = 0.03;
@@ -70,7 +118,6 @@ TEST(RadiusRule, TimeAndBoundaryRadiiFollowTheirFormulas) {
       << "beams extended past boundaries leave BoundaryLossLeft of the loss";
   EXPECT_FALSE(std::isfinite(boundaryRadius({})));
 }
-
 
 /// Probes along +z and beams at angle `theta` to them (azimuth random),
 /// passing within 0.1 of a probe's middle: the pairs obliqueTimeRadius sees.
@@ -86,8 +133,8 @@ void obliqueScene(double theta, std::vector<Beam>& beams, std::vector<ProbeSegme
     for (int k = 0; k < 400; ++k) {
       const float phi = 6.2831853f * rng.nextFloat();
       Beam b;
-      b.direction = Vec3f(float(std::sin(theta)) * std::cos(phi), float(std::sin(theta)) * std::sin(phi),
-                          float(std::cos(theta)));
+      b.direction =
+          Vec3f(float(std::sin(theta)) * std::cos(phi), float(std::sin(theta)) * std::sin(phi), float(std::cos(theta)));
       // Through a point 0.1 around the probe's middle, starting 0.75 before it.
       const Point3f through(float(i) + 0.2f * (rng.nextFloat() - 0.5f), 0.2f * (rng.nextFloat() - 0.5f), 1.0f);
       b.origin = through - b.direction * 0.75f, b.length = 1.5f, b.eta = 1.3f, b.power = Color3f(1.0f);
@@ -150,7 +197,8 @@ TEST(RadiusRule, ObliquePairsKeepThePerpendicularFootprint) {
   for (Beam& b : beams) b.origin = Point3f(Vec3f(b.origin) * 100.0f), b.length *= 100.0f;
   for (ProbeSegment& p : probes)
     p.segment.ray = Ray(Point3f(Vec3f(p.segment.ray.o) * 100.0f), p.segment.ray.d), p.segment.tMax *= 100.0f;
-  EXPECT_FALSE(std::isfinite(obliqueTimeRadius(beams, probes, TimeGrid{}, eta, 10.0))) << "steady films, 100x the scale";
+  EXPECT_FALSE(std::isfinite(obliqueTimeRadius(beams, probes, TimeGrid{}, eta, 10.0)))
+      << "steady films, 100x the scale";
   EXPECT_EQ(obliqueTimeRadius({}, probes, grid, eta, Infinity), perpendicular) << "no beams: the perpendicular bound";
 }
 
