@@ -17,14 +17,10 @@ relMSE and relMSE x CPU (one render's relMSE scatters by about 2x between
 seeds on this scene), with the range of relMSE x CPU.
 
 With --seeds 2 or more a second table splits each budget's relMSE against
-the reference into femto's own noise and what is left, the "floor": one
-render's variance term from the seeds' spread (mean over pairs of the
-weighted (x_i - x_j)^2 / 2, the same weights 1 / (ref^2 + eps mean^2) as
-relMSE), and floor = relMSE(mean of the N renders) - variance / N. The
-floor is what no number of femto samples removes: the reference's own
-Monte Carlo error plus femto's squared bias, weighted alike; a floor that
-stays put as the passes (and the kernel radius) change, and lies evenly over
-the image, is the reference's.
+the reference into femto's own variance (the seeds' spread) and the floor no
+femto sample removes, the reference's error plus femto's squared bias
+(tools/compare/reference_floor.py, which also maps both over the image from
+the volumes this script leaves in --out).
 """
 import argparse
 import os
@@ -34,22 +30,11 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import media_suite  # noqa: E402  (the port's scene copy, render(), relmse())
+import reference_floor  # noqa: E402  (femto's noise and the reference's floor)
 from provenance import commit, cpu_model, load_line  # noqa: E402
 
 # ToF-Tungsten's beams as its README reports them: (passes, CPU s, relMSE).
 PEER = [(4, 9.8, 24.5), (16, 32.1, 21.2), (64, 103.0, 4.09)]
-
-
-def noise_floor(volumes, ref):
-    """(one render's variance term, relMSE of the renders' mean, floor): the
-    module docstring's split, in relMSE's weights."""
-    weight = 1.0 / (ref**2 + media_suite.EPSILON * ref.mean() ** 2)
-    n = len(volumes)
-    pairs = [float(np.mean((volumes[i] - volumes[j]) ** 2 * weight)) / 2.0
-             for i in range(n) for j in range(i + 1, n)]
-    variance = float(np.mean(pairs))
-    of_mean = media_suite.relmse(sum(volumes) / n, ref)
-    return variance, of_mean, of_mean - variance / n
 
 
 def main(argv):
@@ -96,7 +81,7 @@ def main(argv):
               f"{cpu:.1f} | {e:.3g} | {float(np.median(products)):.0f}{spread} | {sums} | "
               f"{r.group(1) if r else '-'} | {m.group(1) if m else '-'} | {m.group(2) if m else '-'} |", flush=True)
         if len(volumes) > 1:
-            floors.append((passes, noise_floor(volumes, ref), float(np.median([r[1] for r in runs]))))
+            floors.append((passes, reference_floor.split(volumes, ref)[:3], float(np.median([r[1] for r in runs]))))
         del volumes
     print("\n" + load_line(load_start, os.getloadavg()))
     if floors:
