@@ -5,7 +5,7 @@
 
 RENDER_i: renders of one scene and budget with different seeds (femto's
 volumes, H x W x bins x channels, as the reference). relMSE is the media
-suite's (epsilon 0.01): mean of (x - ref)^2 / (ref^2 + eps mean(ref)^2).
+suite's (media_suite.relmse): mean of (x - ref)^2 / (ref^2 + eps mean(ref)^2).
 Splits it into
 
   variance   one render's variance term: the mean over pairs of the same
@@ -19,15 +19,18 @@ that lies evenly over the image where the renders' own variance does not, is
 the reference's. The block table gives both over 16 x 16 blocks of the image.
 tools/compare/tof_peer.py prints the split for each budget it renders.
 """
+import os
 import sys
 
 import numpy as np
 
-EPSILON = 0.01  # as tools/bench/media_suite.py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
+import media_suite  # noqa: E402  (relmse() and its epsilon)
 
 
 def weights(ref):
-    return 1.0 / (ref**2 + EPSILON * ref.mean() ** 2)
+    """relMSE's per-voxel weights (media_suite.relmse)."""
+    return 1.0 / (ref**2 + media_suite.EPSILON * ref.mean() ** 2)
 
 
 def split(volumes, ref):
@@ -57,7 +60,7 @@ def main(argv):
     ref = np.load(argv[0]).astype(np.float64)
     volumes = [np.load(f).astype(np.float64) for f in argv[1:]]
     variance, of_mean, floor, floor_map, variance_map = split(volumes, ref)
-    one = float(np.median([np.mean((v - ref) ** 2 * weights(ref)) for v in volumes]))
+    one = float(np.median([media_suite.relmse(v, ref) for v in volumes]))
     print(f"relMSE of one render (median of {len(volumes)}): {one:.3g}")
     print(f"variance of one render: {variance:.3g}; relMSE of the mean: {of_mean:.3g}; floor: {floor:.3g}")
     fb, vb = block_means(floor_map), block_means(variance_map)
