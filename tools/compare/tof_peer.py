@@ -81,7 +81,7 @@ def main(argv):
               f"{cpu:.1f} | {e:.3g} | {float(np.median(products)):.0f}{spread} | {sums} | "
               f"{r.group(1) if r else '-'} | {m.group(1) if m else '-'} | {m.group(2) if m else '-'} |", flush=True)
         if len(volumes) > 1:
-            floors.append((passes, reference_floor.split(volumes, ref)[:3], float(np.median([r[1] for r in runs]))))
+            floors.append((passes, reference_floor.split(volumes, ref)[:3], e))
         del volumes
     print("\n" + load_line(load_start, os.getloadavg()))
     if floors:

@@ -211,12 +211,14 @@ struct Lane {
   BoundingBox3f box;
 };
 
+// The lane of binary node `at`.
+Lane laneOf(const std::vector<Node>& binary, uint32_t at) {
+  const Node& n = binary[at];
+  return Lane{n.count == 0 ? Lane::Kind::Inner : Lane::Kind::Leaf, at, BoundingBox3f(n.lo, n.hi)};
+}
+
 uint32_t collapse(const std::vector<Node>& binary, const std::vector<Piece>& pieces, std::vector<Lane> lanes,
                   std::vector<Node4>& out) {
-  auto laneOf = [&](uint32_t at) {
-    const Node& n = binary[at];
-    return Lane{n.count == 0 ? Lane::Kind::Inner : Lane::Kind::Leaf, at, BoundingBox3f(n.lo, n.hi)};
-  };
   for (;;) {
     int best = -1;
     float bestArea = -1.0f;
@@ -237,7 +239,7 @@ uint32_t collapse(const std::vector<Node>& binary, const std::vector<Piece>& pie
     lanes.erase(lanes.begin() + best);
     const Node& n = binary[open.at];
     if (open.kind == Lane::Kind::Inner) {
-      lanes.insert(lanes.begin() + best, {laneOf(open.at + 1), laneOf(n.index)});
+      lanes.insert(lanes.begin() + best, {laneOf(binary, open.at + 1), laneOf(binary, n.index)});
     } else {
       for (uint32_t i = 0; i < n.count; ++i)
         lanes.insert(lanes.begin() + best + i, Lane{Lane::Kind::Piece, n.index + i, pieces[n.index + i].box});
@@ -252,7 +254,7 @@ uint32_t collapse(const std::vector<Node>& binary, const std::vector<Piece>& pie
       const Lane& lane = lanes[i];
       box = lane.box;
       if (lane.kind == Lane::Kind::Inner) {
-        index = collapse(binary, pieces, {laneOf(lane.at + 1), laneOf(binary[lane.at].index)}, out);
+        index = collapse(binary, pieces, {laneOf(binary, lane.at + 1), laneOf(binary, binary[lane.at].index)}, out);
         count = 0;
       } else if (lane.kind == Lane::Kind::Leaf) {
         index = binary[lane.at].index;
@@ -420,10 +422,7 @@ BeamMap::BeamMap(std::vector<Beam> beams, float radius, const BeamMapOptions& op
   if (!pieces.empty()) {
     std::vector<Node> sparse(2 * pieces.size() - 1);
     Builder(pieces, sparse, options).build(0, pieces.size(), 0, 0);
-    collapse(sparse, pieces,
-             {Lane{sparse[0].count == 0 ? Lane::Kind::Inner : Lane::Kind::Leaf, 0,
-                   BoundingBox3f(sparse[0].lo, sparse[0].hi)}},
-             impl->nodes);
+    collapse(sparse, pieces, {laneOf(sparse, 0)}, impl->nodes);
     impl->nodes.shrink_to_fit();
     inLeafOrder(beams_, pieces);
   }
