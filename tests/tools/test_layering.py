@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The core's folders form layers (README "Layering"): a file may include its
+"""The core's folders form layers (docs/house-rules.md, "Where things go"): a file may include its
 own folder and the folders before it in LAYERS, never one after it; the core
 includes neither femto_view (view/, analysis/) nor any plugin or integrator.
 Usage: test_layering.py SOURCE_DIR (exit 1 naming each include that breaks it)."""
@@ -21,7 +21,7 @@ def violations(source_dir):
             continue
         folder = path.relative_to(core).parts[0]
         if folder not in RANK:
-            yield f"{path}: folder '{folder}' has no place in the layering (add it to LAYERS and the README)"
+            yield f"{path}: folder '{folder}' has no place in the layering (add it to LAYERS and docs/house-rules.md)"
             continue
         text = path.read_text(encoding="utf-8", errors="replace")
         for match in INCLUDE.finditer(text):

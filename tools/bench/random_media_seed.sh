@@ -6,7 +6,7 @@
 # TransientBeamsRandomMedia does in CI (window sum and coarse bins, 5 sigma +
 # the derived bias bound), with the closed form's window printed too.
 # Seed 3 (camera and light inside a sphere), 64 runs x 4 passes: about 4 CPU
-# minutes (docs/photon-beams.md, "A camera inside a medium").
+# minutes (docs/design/photon-beams.md, "A camera inside a medium").
 #   tools/bench/random_media_seed.sh [K=3] [RUNS=64] [PASSES=4] [build dir=build]
 set -eu
 K=${1:-3}

@@ -92,7 +92,7 @@ per segment stay about constant, but the candidates do not: the map cuts a
 beam into at most 16 pieces (beam_pass.cpp), so as the radius shrinks each
 piece's box holds more empty space around the beam, and the query cost grows
 with the number of beams whatever the radius. That is why a pass stores beams
-from only some of its photons (`beam_photon_count`, docs/photon-beams.md).
+from only some of its photons (`beam_photon_count`, docs/design/photon-beams.md).
 TEXT
 } > "$out/section.md"
 /usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md transient-beams-cost < "$out/section.md"

@@ -4,7 +4,7 @@ and expose bias: relMSE of two long renders (different seeds) against the
 reference, against each other, and the reference's own expected contribution,
 each for the volume as rendered, coarser time bins and the time integral,
 where noise is small and a systematic difference (e.g. a kernel's blur) is
-what remains. Prints a Markdown table; see docs/photon-beams.md
+what remains. Prints a Markdown table; see docs/design/photon-beams.md
 ("Performance on the fog Cornell box").
 
   tools/compare/check_reference.py scenes/cornell-box-fog/scene.xml -D resolution=64 -D bins=1024 \\

@@ -19,7 +19,7 @@ second term is the reference's *expected contribution*: subtracting it from a
 measured relMSE estimates the error against the truth. It is an estimate from
 K samples: where the renders' error is heavy-tailed, s_v^2 of a few samples
 is usually below the true variance, so treat it as a typical value, not a
-bound (docs/photon-beams.md, "Performance on the fog Cornell box").
+bound (docs/design/photon-beams.md, "Performance on the fog Cornell box").
 
     path, estimate = multi_seed_reference(femto, scene, defines, "transient_path", "spp", 8192,
                                           seeds=range(7919, 7927), threads=0, cache_dir="build/compare-cache")

@@ -45,7 +45,7 @@ struct Beam {
   /// light reaching x beside it crossed the boundary at another point and
   /// arrives at opl + eta s(x) + offsetDelay . (x - origin), offsetDelay =
   /// (eta - eta_before) (n / (n.v) - v) (n: the boundary's normal; ray_beam.cpp,
-  /// docs/photon-beams.md "Timing the extension before a beam's start").
+  /// docs/design/photon-beams.md "Timing the extension before a beam's start").
   /// Zero for every other beam.
   Vec3f offsetDelay{0.0f};
 };

@@ -15,7 +15,7 @@
 // the binary tree's, so a segment meets the same pieces as before.
 //
 // Why a BVH of our own and not Embree's curves: plugins never see Embree
-// (docs/STYLE.md, "Embree stays in the core"), and an all-hits query needs no
+// (../shared/docs/STYLE.md, "Embree stays in the core"), and an all-hits query needs no
 // closest-hit machinery.
 #include <transient_beams/beam_map.h>
 

@@ -9,7 +9,7 @@
 // long: a fixed number of radii, or a cost rule weighing the build against
 // the crossings the queries will make, BeamMapOptions::crossingDensity),
 // built with a binned surface area heuristic. Choices measured in
-// docs/BENCHMARKS.md ("Beam map") and docs/photon-beams.md ("Culling
+// docs/BENCHMARKS.md ("Beam map") and docs/design/photon-beams.md ("Culling
 // since"); the build is parallel but deterministic (same beams, same tree).
 #include <cstdint>
 #include <vector>

@@ -62,7 +62,7 @@
 // relMSE and a single-ray closed-form test saw late bins no pass reached; at
 // 5 % (s0 = 3 mean free paths) both are as without it, and the thick
 // medium's earliest 1 % of light, which only the deepest points see, keeps
-// its error (docs/photon-beams.md, "Russian roulette along camera segments").
+// its error (docs/design/photon-beams.md, "Russian roulette along camera segments").
 #include <cmath>
 
 #include <femto/math/constants.h>

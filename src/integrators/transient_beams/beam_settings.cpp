@@ -131,7 +131,7 @@ BeamSettings BeamSettings::withBeamRadiusFrom(const std::vector<Beam>& beams, co
   // light's leak (now the light bound, light_leak.h) and the extension's
   // timing before a beam's start (ray_beam.cpp; random media seed 2).
   // Photon points are not extended: the fog box's points read 6 % below
-  // beams at the relaxed radius (docs/photon-beams.md, "Relaxing the
+  // beams at the relaxed radius (docs/design/photon-beams.md, "Relaxing the
   // boundary bound for beams").
   d.boundary = boundaryRadius(probes, /*extended=*/!points);
   d.light = lightBound;

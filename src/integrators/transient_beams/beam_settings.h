@@ -27,7 +27,7 @@ enum class BeamStore {
 };
 
 /// What photons leave in media, and so which estimate a camera segment in a
-/// medium makes (docs/photon-beams.md, "Photon points vs photon beams").
+/// medium makes (docs/design/photon-beams.md, "Photon points vs photon beams").
 enum class VolumeEstimator {
   /// Photon beams and the ray x beam 1D estimate (ray_beam.h): the default.
   Beams,
@@ -54,7 +54,7 @@ struct BeamSettings : PathDepthSettings {
   float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
   float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
   float gatherRoulette = BeamRoulette::GatherTau;  // T_cam where a gather's Russian roulette starts (0: never)
-  float alpha = 0.9f;  // progressive radius reduction, in (0, 1] (docs/photon-beams.md: why 0.9)
+  float alpha = 0.9f;  // progressive radius reduction, in (0, 1] (docs/design/photon-beams.md: why 0.9)
   BeamStore store = BeamStore::All;
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;   // the camera segment counts toward the OPL
@@ -74,7 +74,7 @@ struct BeamSettings : PathDepthSettings {
   BeamSettings resolved(const BoundingBox3f& sceneBounds) const;
 
   /// If no beam radius is given, derive the first pass's (radius_rule.h,
-  /// docs/photon-beams.md, "Derived beam radius"): the smallest of
+  /// docs/design/photon-beams.md, "Derived beam radius"): the smallest of
   ///  * the density radius: probe segments (camera rays through the film in
   ///    media, radius_probe.h) meet TargetPairHits of `beams` on average,
   ///    so a gather's cost stays bounded whatever the photon count;
@@ -113,7 +113,7 @@ struct BeamSettings : PathDepthSettings {
   BeamSettings withBeamsForRadius(const DerivedRadius& derived) const;
 
   /// Pairs per camera segment the density radius aims at, from the balance
-  /// of a segment's error per unit cost (docs/photon-beams.md, "Derived beam
+  /// of a segment's error per unit cost (docs/design/photon-beams.md, "Derived beam
   /// radius"): the beams' part of the variance falls as 1/h (h pairs), the
   /// camera side's (pixel footprint, surfaces) does not depend on h; a query
   /// costs C0 + c h with C0 (traversal, the rest of the camera sample) about

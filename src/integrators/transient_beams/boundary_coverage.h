@@ -1,5 +1,5 @@
 #pragma once
-// The kernel's boundary loss measured on the scene (docs/photon-beams.md,
+// The kernel's boundary loss measured on the scene (docs/design/photon-beams.md,
 // "The boundary loss measured on the scene"). boundaryRadius (radius_rule.h)
 // bounds the loss the extensions leave with a planar model: BoundaryLossLeft
 // of the first-order loss, the grazing beams' share for isotropic beams.

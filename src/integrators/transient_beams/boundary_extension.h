@@ -1,6 +1,6 @@
 #pragma once
 // Kernel extensions of beams past the boundaries where they end or start
-// (docs/photon-beams.md, "Boundary extension"): the ray x beam estimate is
+// (docs/design/photon-beams.md, "Boundary extension"): the ray x beam estimate is
 // the beam density blurred over a disc of radius r across each beam; within
 // r of a boundary part of the disc lies behind it, where no beam runs, so
 // the estimate loses, to first order in r, 2 r / (3 pi) of the density per
@@ -52,7 +52,7 @@ inline float boundaryExtension(const Normal3f& n, const Vec3f& d) {
 /// through a pass-through boundary of normal `n`, where the index rose by
 /// `etaStep` (eta - eta_before): etaStep q, q = n / (n.d) - d (q . (x - b)
 /// is how much farther than s(x) the light reaching x has run in the
-/// medium, for a plane wave through a planar boundary; docs/photon-beams.md,
+/// medium, for a plane wave through a planar boundary; docs/design/photon-beams.md,
 /// "Timing the extension before a beam's start"). |q| = tan theta_n, capped
 /// as the extension is (boundaryExtension: 1 / cos theta_n <= M). Zero
 /// where the index does not change.

@@ -131,7 +131,7 @@ bool CameraTracer::followSpecular(Path& s, const SurfaceInteraction& si, Sampler
 
 void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sampler& sampler,
                                RadianceRecorder& recorder) {
-  // Russian roulette on the whole gather (docs/photon-beams.md, "Gather
+  // Russian roulette on the whole gather (docs/design/photon-beams.md, "Gather
   // fraction"): a segment gathers with probability q and its estimates weigh
   // 1/q, so the expectation is unchanged. Only drawn when q < 1, so q = 1
   // renders exactly as without it.

@@ -56,7 +56,7 @@ namespace femto::beams {
 
 /// Work counters of the camera side (per thread, summed per pass): what the
 /// estimates cost, for the statistics the integrator logs and the benchmarks
-/// read (docs/photon-beams.md, "Cost").
+/// read (docs/design/photon-beams.md, "Cost").
 struct CameraStatistics {
   uint64_t cameraRays = 0;      // camera samples traced
   uint64_t segments = 0;        // camera segments in media: beam map queries

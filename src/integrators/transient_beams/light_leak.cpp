@@ -1,4 +1,4 @@
-// The kernel's leak around a point light (light_leak.h, docs/photon-beams.md).
+// The kernel's leak around a point light (light_leak.h, docs/design/photon-beams.md).
 #include <transient_beams/light_leak.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// The kernel's bias around a point light (docs/photon-beams.md, "The kernel
+// The kernel's bias around a point light (docs/design/photon-beams.md, "The kernel
 // near a point light"). A point light inside a medium sends a star of beams
 // whose density, the fluence I / d^2, is singular at the light. The ray x
 // beam estimate is that density blurred over a disc of radius r across each
@@ -82,7 +82,7 @@ double lightBoundRadius(const Scene& scene, const std::vector<Beam>& beams, cons
 /// f ~ pi r^2 / (6 p^3); test_light_leak.cpp), and the mix the integrator
 /// uses (1D where the chord fits, the chord near the light) measured by
 /// Monte Carlo over 73 line distances (1 M beams each) at most 1.47 at
-/// x = 1.5-2 (docs/photon-beams.md): 1.5.
+/// x = 1.5-2 (docs/design/photon-beams.md): 1.5.
 constexpr double OneDLeakFactor = 1.5;
 
 /// 0.1 %: with the boundary loss (BoundaryBiasTarget, 0.4 %) the total stays

@@ -1,4 +1,4 @@
-// The derived beam radius's three bounds (radius_rule.h, docs/photon-beams.md).
+// The derived beam radius's three bounds (radius_rule.h, docs/design/photon-beams.md).
 #include <transient_beams/radius_rule.h>
 
 #include <algorithm>

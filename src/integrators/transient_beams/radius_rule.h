@@ -1,6 +1,6 @@
 #pragma once
 // How wide the first pass's beam kernel is when the scene does not say
-// (docs/photon-beams.md, "Derived beam radius"): the smallest of four radii,
+// (docs/design/photon-beams.md, "Derived beam radius"): the smallest of four radii,
 // each from what the render needs rather than from the scene's size.
 //  * density: the radius at which a camera segment meets TargetPairHits beams
 //    on average, counted on probe segments (camera rays through the film,
@@ -111,7 +111,7 @@ double pairContribution(const NearPair& pair, double r, RayBeamHit* hit = nullpt
 /// scale tau (|f''/f| ~ 1 / tau^2) is off by at most sigma^2 / (2 tau^2) <
 /// 0.5 % once tau >= 10 sigma ~ 9.4 bins, and the blur shrinks with the
 /// radius per pass (r_i ~ i^(alpha - 1)).
-/// Oblique pairs (obliqueTimeRadius; docs/photon-beams.md, "The time bound
+/// Oblique pairs (obliqueTimeRadius; docs/design/photon-beams.md, "The time bound
 /// for oblique pairs"): a pair at angle theta (cos theta = w.v) covers a
 /// chord c = 2 sqrt(r^2 - d^2) / sin(theta) of the camera segment (clipped to
 /// the beam's slab and the segment), along which the OPL runs at rate
@@ -127,11 +127,11 @@ double pairContribution(const NearPair& pair, double r, RayBeamHit* hit = nullpt
 /// K bins, (2/3) K^2 bins^2, and keeps the perpendicular bound itself (the
 /// beams' own lateral offset d adds up to eta d in any direction).
 /// K = 1 (the earlier rule) made the radius 4-12x smaller than the efficient
-/// one on the media suite (docs/photon-beams.md, "Derived beam radius":
+/// one on the media suite (docs/design/photon-beams.md, "Derived beam radius":
 /// radius sweeps).
 constexpr double TimeBinFraction = 4.0;
 /// Relative loss per unit r / length at the two ends of a camera segment
-/// (4 / (3 pi), derivation in docs/photon-beams.md) times 2 for light
+/// (4 / (3 pi), derivation in docs/design/photon-beams.md) times 2 for light
 /// concentrated near the boundary. Beams extended past boundaries leave
 /// BoundaryLossLeft of it (boundary_extension.h: the grazing beams');
 /// photon points are not extended.

@@ -1,5 +1,5 @@
 // Ray x beam 1D-kernel estimate, transient (see ray_beam.h and
-// docs/photon-beams.md for the derivation of every step).
+// docs/design/photon-beams.md for the derivation of every step).
 #include <transient_beams/ray_beam.h>
 
 #include <algorithm>
@@ -106,7 +106,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
   hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 
-  // Causal OPL (docs/photon-beams.md, "Causality"): light at camera point
+  // Causal OPL (docs/design/photon-beams.md, "Causality"): light at camera point
   // x(t) came from the beam's start b, which it left at beam.opl, and
   // travelled at least |x(t) - b| in the medium (eta_b): g(t) = eta_c t +
   // eta_b |x(t) - b|. Away from the start |x(t) - b| = s(t) + gap^2 / (2 s):
@@ -128,7 +128,7 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   // measured from b instead (|x - b| = |s| + ...) it was 2 eta_b |s| late,
   // up to 32 eta_b r for grazing beams: issue 14's random media seed 2 put
   // energy 5+ bins after the latest arrival at r = 0.083
-  // (docs/photon-beams.md, "Timing the extension before a beam's start").
+  // (docs/design/photon-beams.md, "Timing the extension before a beam's start").
   // A beam that entered through a pass-through boundary where the index
   // changed (light changes speed, not direction: the random media family)
   // has a tilted wavefront: light at x crossed the boundary at another

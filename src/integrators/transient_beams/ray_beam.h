@@ -15,7 +15,7 @@
 // and the estimate is spread uniformly over that interval (the film's
 // addInterval deposits it exactly per bin).
 //
-// Geometry (derivation and tests: docs/photon-beams.md). Camera segment
+// Geometry (derivation and tests: docs/design/photon-beams.md). Camera segment
 // x(t) = o + t w, t in [0, tMax]; beam y(s) = b + s v, s in [0, length];
 // c = cos(theta) = w.v (w points away from the camera, v along the light).
 //  * Kernel region: the finite cylinder of radius r around the beam, capped
@@ -56,7 +56,7 @@
 
 namespace femto::beams {
 
-/// Which kernel weights a pair (docs/photon-beams.md, "Kernels").
+/// Which kernel weights a pair (docs/design/photon-beams.md, "Kernels").
 enum class RayBeamKernel {
   /// Jarosz et al. 2011 beam x beam 1D, 1/(2 r sin(theta)), where the whole
   /// kernel chord fits in both segments; the exact cylinder value elsewhere.

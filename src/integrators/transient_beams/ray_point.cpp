@@ -1,5 +1,5 @@
 // Ray x photon point 2D-kernel estimate, transient (see ray_point.h and
-// docs/photon-beams.md, "Photon points vs photon beams").
+// docs/design/photon-beams.md, "Photon points vs photon beams").
 #include <transient_beams/ray_point.h>
 
 #include <cmath>
@@ -27,7 +27,7 @@ bool rayPointIntersect(const CameraSegment& segment, const Beam& point, float ra
   hit.kernel = InvPi / r2;
   // The gap from the photon to ray(t) is crossed at the photon's medium's
   // eta: the instant is then the OPL of a real path photon -> ray(t) ->
-  // ray.o, never earlier than light could arrive (docs/photon-beams.md,
+  // ray.o, never earlier than light could arrive (docs/design/photon-beams.md,
   // "Causality").
   const double gap = std::sqrt(double(dot(m, m)));
   hit.oplBegin = hit.oplEnd = double(segment.eta) * double(t) + double(point.eta) * gap;

@@ -4,7 +4,7 @@
 // the floor, the rim of a box) finds no photons beyond it: the density
 // estimate divided by the whole disc's area is low there by the share off
 // the surface (half the disc on the edge, 2 / (3 pi) of it averaged over the
-// band of width r beside a straight edge; docs/photon-beams.md, "The surface
+// band of width r beside a straight edge; docs/design/photon-beams.md, "The surface
 // radius"). The camera side divides by the covered area instead.
 #include <femto/math/vector.h>
 

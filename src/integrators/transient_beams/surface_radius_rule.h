@@ -1,7 +1,7 @@
 #pragma once
 // The derived surface photon kernel radius (surface_radius absent or 0):
 // from pass 0's surface photons where the camera gathers them and from the
-// film's pixels, not from the scene's bounding box (docs/photon-beams.md,
+// film's pixels, not from the scene's bounding box (docs/design/photon-beams.md,
 // "The surface radius"). Probes: the first smooth surface along camera rays
 // through a jittered grid of the film, straight through index-matched
 // boundaries (as camera paths go).
@@ -44,7 +44,7 @@ struct SurfaceProbe {
 constexpr int SurfaceProbeGrid = 16;
 std::vector<SurfaceProbe> surfaceProbes(const Scene& scene, int grid = SurfaceProbeGrid);
 
-/// Photons per gather the density bound aims at in pass 0 (docs/photon-beams.md,
+/// Photons per gather the density bound aims at in pass 0 (docs/design/photon-beams.md,
 /// "The surface radius": measured on the fog box).
 constexpr int SurfacePhotonsPerGather = 64;
 /// The pixel bound: the kernel's radius in pixel footprints.

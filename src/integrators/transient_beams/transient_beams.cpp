@@ -10,7 +10,7 @@
 // shrink per pass (beam_settings.h). Time is optical path length: photons and
 // camera paths add eta times every segment (and phase-function delays), and a
 // ray x beam pair covers a continuous OPL interval, deposited exactly on the
-// film's bins. Transport split and estimators: docs/photon-beams.md.
+// film's bins. Transport split and estimators: docs/design/photon-beams.md.
 //
 // Determinism: pass i's camera samples use the render loop's per-pixel seeds
 // from passSeed(seed, i); its photons use streams seeded by (that seed,

@@ -1,108 +1,18 @@
 // transient_path: unidirectional volumetric path tracing that reports every
-// contribution with the optical path length (OPL, time/time_grid.h) at
-// which it reaches the sensor, so one integrator renders transient films
-// (time-resolved) and steady films alike. Mitsuba's "volpath" scenes load
-// with this integrator (the loader maps the name).
-//
-// Transport (the transient RTE of Marco et al., "Transient Photon Beams",
-// eq. 1-3): free flights are sampled in media (render/medium.h); at every
-// scattering vertex (medium or non-delta surface) one emitter sample is
-// connected through media with their transmittance (ratio tracking in
-// heterogeneous media) and combined with phase/BSDF sampling by multiple
-// importance sampling (power heuristic, Veach 1997, sec. 9.2.4). Lights at a
-// point (point, spot, projector) seen from a medium get a second medium
-// vertex per segment: its distance is sampled equiangularly toward the light
-// (transport/equiangular.h: density ~ 1/r^2) over the whole segment, and
-// MIS-weighted against the free-flight vertex's next-event estimate (in a
-// heterogeneous medium, whose free flights have no closed-form density, the
-// equiangular vertex takes every distance it can sample and the free-flight
-// vertex the rest: freeFlightVertexWeight; its transmittance to the vertex
-// is ratio tracking's estimate). Without it, next-event estimates from
-// free-flight vertices near a point light have infinite variance
-// (fireflies ~ 1/r^2).
-//
-// Light-directed vertices (light_directions = true): that still leaves rays
-// that pass close to the light. The single-scattered radiance arriving along
-// a ray that passes at distance h from a point light is ~ 1/h, and equiangular
-// sampling estimates exactly that, so a phase- or BSDF-sampled direction that
-// happens to pass within h (probability ~ h^2) gives an estimate ~ 1/h: its
-// second moment diverges (the fireflies of the peer's fog Cornell box, issue
-// 15: 94 % of the estimates above 500 there were such equiangular vertices on
-// segments after the first vertex, up to 1e4 times their cell's mean). So
-// every scattering vertex also samples one direction around the light with
-// density ~ 1 / sin(angle to the light) (transport/point_directions.h), which
-// cancels the 1/h, and an equiangular vertex along it; the three ways to
-// reach a medium vertex that connects to the light (free flight, equiangular
-// along the sampled direction, equiangular along the light-directed one) are
-// combined by the power heuristic over their densities in the same measure
-// (the direction densities at the vertex times the distance densities).
-// Where the light-directed ray ends on a surface, that surface connects to the
-// light too, MIS-weighted against the path's own direction reaching it
-// (lightDirectedSurface): the fog box's ceiling, 0.2 above its light, was
-// otherwise found only by phase and BSDF sampling, and its rare next-event
-// estimates held over 97 % of a late window's squared error.
-//
-// Time gating (time_gating = true; temporal importance sampling): the
-// equiangular vertex is sampled only over the part of its segment from which
-// a straight connection to the light arrives inside the film's window
-// (transport/time_gate.h: the distances between two ellipsoids with foci at
-// the segment's start and the light; He et al., "DARTS", SIGGRAPH Asia 2024,
-// sample on this interval), and the free-flight vertex's MIS weight uses that
-// same density, so the estimate stays unbiased for any window; segments that
-// cannot reach the window spend no equiangular vertex at all. A short window
-// late in time then gets one next-event estimate per segment that lands in it,
-// where free flights put only a small share of theirs there. Free flights are
-// truncated by the residual time (transport/time_gate.h, gateReach): past
-// the distance from which even a straight connection to the nearest light
-// arrives at or after the gate's end, nothing the path does can land before
-// it (triangle inequality, refractive indices >= 1, delays only add), so in
-// a medium the free flight is conditioned on scattering before that
-// distance and weighted by the probability that it does (the surface beyond
-// is never reached; Medium::sampleDistanceBefore: in a heterogeneous one
-// the first tentative collision is conditioned, and a path that tracks past
-// the distance ends); paths also end at a vertex whose OPL plus
-// the distance to the nearest light reaches the gate's end. Lights not at a
-// point (area, environment, directional) give no distance: then only the
-// residual OPL bounds the reach. The gate's end is the recorder's horizon,
-// so the steady image and _before/_after keep what they record (their
-// expectations are unchanged); the horizon alone only ended a path once its
-// own OPL had passed it. The camera segment without observer time is not
-// truncated (its OPL does not count). A vertex from which even the longest
-// way through the scene's box to the lights arrives before the window
-// samples no light-directed vertex (its equiangular vertices could not land
-// in the window; the path's own MIS weights know: prevLightDirected).
-// Next-event connections whose light surely arrives before the window (at
-// most the scene's largest refractive index times their length) are made
-// with probability before_window_rate (default 1/8) and weighted by its
-// inverse: on a late window those shadow rays are most of the time spent,
-// the window's estimate cannot change (nothing left out lands in it), and
-// the steady image and _before keep their means at more noise.
-// skip_before_window = true is rate 0: they then lack most of the light
-// before the window. Time gating itself is off by default:
-// with it the samples depend on the window, so a render split into windows is
-// equal to one render within noise only, not bit for bit
-// (test_transient_time_window_split.cpp). Paths end by
-// Russian roulette on the throughput, at max_depth, or once their OPL passes
-// the film's horizon.
-//
-// OPL: each segment adds eta times its length, where eta is the refractive
-// index of the medium crossed; where there is no medium it is the IOR of the
-// dielectric the path is inside, tracked as the product of the relative IORs
-// (BSDFSample::eta) of the refractions so far. Phase functions may add a
-// scattering delay (render/phase.h). A next-event contribution's OPL includes
-// the light segment. With observer_time = false the camera segment (sensor to
-// the first scattering vertex) is left out, so wavefronts show where light is
-// rather than when the camera sees it (Marco et al., fig. "with and without
-// observer time"). Every contribution is reported for a Dirac emission at
-// OPL 0 together with its emitter's pulse (Emitter::pulse(): the emitter hit,
-// the one next-event estimation sampled, or each environment emitter), and
-// the film convolves it with the pulse exactly (RadianceRecorder::addPulsed),
-// so pulses cost no extra samples or noise. Emission from environment or
-// directional emitters is recorded at the OPL of the last vertex: light from
-// infinitely far away has no finite path.
-//
-// Depth counts path segments, as in Mitsuba: max_depth = 1 gives only
-// emitters seen directly, 2 adds single scattering and direct illumination.
+// contribution with the optical path length (OPL, time/time_grid.h) at which it
+// reaches the sensor, so one integrator renders transient and steady films
+// (the transient RTE of Marco et al., "Transient Photon Beams", eq. 1-3).
+// Each scattering vertex connects one emitter sample through media, combined
+// with phase/BSDF sampling by the power heuristic (Veach 1997, sec. 9.2.4);
+// toward point lights it adds an equiangular vertex on the segment and a
+// light-directed vertex (direction density ~ 1/sin of the angle to the light),
+// whose three-way MIS removes the fireflies of a point light in fog.
+// time_gating samples toward the film's window (DARTS, He et al. 2024).
+// Why each strategy and how they combine: docs/design/transient-path.md;
+// what they buy: docs/BENCHMARKS.md, "transient_path sampling". Mitsuba's
+// volpath loads as this integrator; the same source builds mitransient's
+// transient_prbvolpath (max_depth 6 by default) and Mitsuba 2's transientpath,
+// bit for bit the same output (docs/design/transient-path.md, "mitransient's").
 //
 // clang-format off
 // | name                 | type    | default | meaning                                                      | unit |
@@ -123,13 +33,6 @@
 // | version              | integer | -       | lajolla's volpath variant selector: accepted, ignored        | -    |
 // | block_size           | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
 // clang-format on
-//
-// The same source builds mitransient's and Mitsuba 2's names for this
-// integrator as plugins of their own (src/plugins/CMakeLists.txt):
-// `transient_prbvolpath` (mitransient's volumetric path tracer: max_depth
-// defaults to 6, as in mitransient) and `transientpath` (Mitsuba 2's
-// transient path tracer). Their output is that of transient_path with the
-// same parameters, bit for bit.
 #include <algorithm>
 #include <cmath>
 

@@ -107,7 +107,7 @@ struct MediaScene {
   /// view the radiance, about 1 / h at distance h from the light, is convex
   /// across the pixels next to it, which the midpoint rule underestimates:
   /// by 0.58 % (n = 4), 0.43 % (8), 0.03 % (16) on the closed-form sphere
-  /// test, whose light is 0.046 outside the view (docs/photon-beams.md, "The
+  /// test, whose light is 0.046 outside the view (docs/design/photon-beams.md, "The
   /// kernel near a point light").
   std::vector<double> closedFormImageSums(const Scene& scene, int steps = 20000, int n = 4) const {
     std::vector<double> sums(size_t(grid.bins), 0.0);

@@ -125,7 +125,7 @@ TEST(BeamRoulette, AGatherEndedByTheRouletteKeepsTheBlurredBeam) {
   // kernel cylinder, t_c +- h(d), h(d) = sqrt(r^2 - d^2) / sin(theta),
   // integrated against T_cam = e^{-sigma t} over the disc's area pi r^2;
   // averaged over offsets uniform in [-D, D] (the 1D kernel is unbiased on
-  // that average, docs/photon-beams.md "Kernel value"). Crossings before,
+  // that average, docs/design/photon-beams.md "Kernel value"). Crossings before,
   // at and past s0 = ln(1 / GatherTau) / sigma, where the gather's roulette
   // starts.
   const float sigma = 1.0f, radius = 0.002f, tMax = 20.0f, spread = 1.5f * radius;

@@ -128,7 +128,7 @@ MediaScene sphere(bool observerTime) {
 /// camera and light, in a sphere off-centre around both, so camera rays
 /// start in the medium (the sensor's) and leave it through the boundary
 /// about 2.4 away. Its beams' noise is that of a camera inside a medium
-/// (docs/photon-beams.md, "A camera inside a medium"): 0.7 % of the window
+/// (docs/design/photon-beams.md, "A camera inside a medium"): 0.7 % of the window
 /// over these 4 runs, so 5 sigma resolves a 4 % bias.
 MediaScene sphereFromInside(bool observerTime) {
   MediaScene m = unbounded(observerTime);
@@ -154,7 +154,7 @@ MediaScene sphereFromInside(bool observerTime) {
 /// mass of 2 fine bins each side of an edge), so the rule's own test is
 /// RadiusRule.ObliquePairsKeepThePerpendicularFootprint; at the oblique
 /// bound (~0.004) -3.8 % and -1.4 % (s.e. 2 % and 0.9 %); at r = 0.002
-/// +1.3 % and -0.2 % (docs/photon-beams.md, "The time bound for oblique
+/// +1.3 % and -0.2 % (docs/design/photon-beams.md, "The time bound for oblique
 /// pairs").
 MediaScene litBesideTheCamera() {
   MediaScene m;
