@@ -7,7 +7,8 @@ ToF-Tungsten's port (its own reference, 1 camera sample per pass as the
 peer ran). Prints a Markdown table; medians over --seeds seeds.
 
   tools/bench/beams_alpha.py [--femto build/bin/femto] [--alphas 0.7,0.8,0.9]
-      [--passes 8] [--seeds 2] [--out build/beams-alpha]
+      [--passes 8] [--seeds 2] [--out build/beams-alpha] | tools/bench/benchmarks.py set beams-alpha
+  (--alphas 0.7,0.9 --passes 64 --seeds 1: set beams-alpha-64)
 
 Why it matters: with a 1D kernel a pass's variance grows as 1 / r_i, so the
 mean of N passes has variance ~ N^(-alpha) and relMSE x CPU grows as
@@ -73,7 +74,7 @@ def main(argv):
             for alpha in alphas:
                 rows.append((port["name"], n, alpha, *measure(args.femto, port, ref, 0.0, alpha, n, args.seeds,
                                                              args.out, {})))
-    header("transient_beams: the radius reduction alpha", "tools/bench/beams_alpha.py",
+    header(f"transient_beams: the radius reduction alpha at {args.passes} passes", "tools/bench/beams_alpha.py",
            f"tools/bench/beams_alpha.py {' '.join(argv)}",
            [f"medians over seeds 1-{args.seeds}; CPU = user + system seconds of the femto process; relMSE as the "
             "media suite's (fog box: its path-traced reference's own error subtracted)"])

@@ -5,7 +5,7 @@ falling with the passes); prints the Markdown of docs/BENCHMARKS.md's
 "Beams' bias against closed forms" section.
 
   tools/bench/beams_bias.py [--passes 4,16,64] [--pass-runs 192] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md beams-bias
+      | tools/bench/benchmarks.py set beams-bias
 
 Runs the CI tests TransientBeamsClosedForm.* (tests/unit/integrators/
 transient_beams/test_transient_beams_closed_form.cpp: 8x8 pixels, the

@@ -5,7 +5,7 @@ with fresh photons), at about equal CPU, against transient_path; prints the
 Markdown of docs/BENCHMARKS.md's "beams-pass-split" section.
 
   tools/bench/beams_pass_split.py [--resolution 64] [--seeds 2] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md beams-pass-split
+      | tools/bench/benchmarks.py set beams-pass-split
 
 relMSE (epsilon 0.01) against the mean of two transient_path renders of
 --reference-spp (cached under build/beams-pass-split; their own error
@@ -62,7 +62,7 @@ def main():
                     reference_spp=args.reference_spp)
         with contextlib.redirect_stdout(sys.stderr):  # its progress lines
             ref, own = ms.cached_path_reference(femto=args.femto, case=case, out_dir=out_dir)
-        print(f"### {bins} bins\n")
+        print(f"### Splitting a budget at {bins} bins\n")
         print("| split | CPU s | relMSE | relMSE × CPU | ratio |")
         print("|---|---|---|---|---|")
         path = None

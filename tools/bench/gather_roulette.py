@@ -5,7 +5,7 @@ arrival band, on the media suite's scenes where camera segments are long in
 mean free paths. Writes the "gather-roulette" section of docs/BENCHMARKS.md.
 
   tools/bench/gather_roulette.py [--femto build/bin/femto] [--out build/media-suite] [--seeds 3] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md gather-roulette
+      | tools/bench/benchmarks.py set gather-roulette
 
 Per scene and gather_roulette value (0: gathers reach the segment's end; the
 default 0.05; the beams' 0.25): renders with seeds 1..N, CPU the median of

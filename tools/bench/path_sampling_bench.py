@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """transient_path's distance sampling, measured: prints the Markdown of
-docs/BENCHMARKS.md's "transient_path sampling" section.
+docs/BENCHMARKS.md's "transient_path sampling" sections.
 
-  tools/bench/path_sampling_bench.py [--seeds 3] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md path-sampling
+  tools/bench/path_sampling_bench.py [--seeds 3] | tools/bench/benchmarks.py set path-sampling
+  tools/bench/path_sampling_bench.py [--seeds 3] --only c \
+      | tools/bench/benchmarks.py set path-sampling-heterogeneous
 
 (a) Equiangular next-event vertices vs free flights only (transient_path's
     `equiangular`) on scenes/cornell-box-fog, single scattering (max_depth 2)
@@ -293,7 +294,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=3, help="seed pairs for (a) and (b)")
     parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--only", default="abcd", help="which tables")
+    parser.add_argument("--only", default="abd", help="which tables (c alone: its own section)")
     parser.add_argument("--late-spp", type=int, default=512, help="the budget of table (d)")
     parser.add_argument("--femto", default=FEMTO,
                         help="the femto executable (e.g. a copy of an older build, to measure before and after)")
@@ -301,9 +302,12 @@ def main():
     ARGS.femto = args.femto
     load_start = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="path-sampling-") as out_dir:
-        header("transient_path sampling: equiangular, time windows", "tools/bench/path_sampling_bench.py",
+        # Table (c) has a section of its own (tools/bench/benchmarks.py: path-sampling-heterogeneous).
+        title = ("transient_path sampling in a heterogeneous medium" if args.only == "c"
+                 else "transient_path sampling: equiangular, time windows")
+        header(title, "tools/bench/path_sampling_bench.py",
                f"tools/bench/path_sampling_bench.py --seeds {args.seeds}"
-               f"{' --only ' + args.only if args.only != 'abcd' else ''}",
+               f"{' --only ' + args.only if args.only != 'abd' else ''}",
                ["CPU = user + system seconds of the whole `femto render` process (loading, rendering, writing); "
                 "the machine is shared, so wall time is not quoted"], threads=args.threads)
         if "a" in args.only:

@@ -95,5 +95,5 @@ with the number of beams whatever the radius. That is why a pass stores beams
 from only some of its photons (`beam_photon_count`, docs/design/photon-beams.md).
 TEXT
 } > "$out/section.md"
-/usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md transient-beams-cost < "$out/section.md"
+/usr/bin/python3 tools/bench/benchmarks.py set transient-beams-cost < "$out/section.md"
 cat "$out/section.md"

@@ -54,4 +54,4 @@ load_after=$(cut -d' ' -f1-3 /proc/loadavg)
   echo "scene file's settings)."
   echo
   cat "$out"
-} | /usr/bin/python3 tools/bench/replace_doc_section.py docs/BENCHMARKS.md media-suite
+} | /usr/bin/python3 tools/bench/benchmarks.py set media-suite

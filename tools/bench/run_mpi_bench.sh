@@ -117,5 +117,5 @@ out=docs/BENCHMARKS.md
   echo "CPU times of the runs (s): transient_path 1: $(runs_of "$work/path1" 1); 2: $(runs_of "$work/path2" 1);"
   echo "transient_beams 1: $(runs_of "$work/beams1" 1); 2: $(runs_of "$work/beams2" 1)."
   echo "One process, transient_beams summary: $(grep -m1 'transient_beams: [0-9]* passes' "$work/beams1.log")"
-} | /usr/bin/python3 tools/bench/replace_doc_section.py "$out" mpi-scaling
+} | /usr/bin/python3 tools/bench/benchmarks.py set mpi-scaling
 echo "wrote the mpi-scaling section of $out (load average at the end: $load_end)"

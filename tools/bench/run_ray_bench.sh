@@ -48,7 +48,7 @@ out=docs/BENCHMARKS.md
   work, the speed-up two idle cores would give if nothing else limits it; it
   falls below 2 with per-thread overhead (TBB workers spinning count against it).
 
-### Reading the numbers
+### Reading the ray-casting numbers
 
 - The ray cast itself through femto (`rayHitDistance`) is within a few percent
   of raw Embree with the same flags: the per-ray path is one non-virtual call
@@ -77,5 +77,5 @@ out=docs/BENCHMARKS.md
   by ray casting; its per-sample std::function call in the render loop is
   negligible at this cost per sample.
 TEXT
-} | /usr/bin/python3 tools/bench/replace_doc_section.py "$out" ray-casting
+} | /usr/bin/python3 tools/bench/benchmarks.py set ray-casting
 echo "wrote the ray-casting section of $out"

@@ -121,7 +121,7 @@ out=docs/BENCHMARKS.md
   done
   echo
   cat <<'TEXT'
-### Reading the numbers
+### Reading the transient_path cost numbers
 
 - With a steady film transient_path gets a recorder that only sums (no
   binning, infinite horizon), so against `path` it pays for its per-segment
@@ -141,5 +141,5 @@ out=docs/BENCHMARKS.md
   time window (docs/transient-film.md, "Splitting a render") when a volume
   gets too large to write.
 TEXT
-} | /usr/bin/python3 tools/bench/replace_doc_section.py "$out" transient-path
+} | /usr/bin/python3 tools/bench/benchmarks.py set transient-path
 echo "wrote the transient-path section of $out (load average at the end: $load_end)"

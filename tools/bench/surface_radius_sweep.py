@@ -6,7 +6,8 @@ docs/BENCHMARKS.md's "surface-radius" section.
 
   tools/bench/surface_radius_sweep.py [--radii 0,0.0346,0.07,0.1,0.15] [--seeds 2] \
       [--before /path/to/earlier/bin/femto --before-label "..."] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md surface-radius
+      | tools/bench/benchmarks.py set surface-radius
+  (with --medium none: set surface-radius-no-medium)
 
 32x32 pixels, 1024 bins of 0.01 OPL, 8 passes of the scene file's split
 (scenes/cornell-box-fog/integrator-transient_beams.xml: 8 camera samples

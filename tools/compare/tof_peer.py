@@ -7,7 +7,7 @@ and their product per budget, printed as a Markdown table beside the peer's
 own measurements (quoted from the README: they were made on the peer's side).
 
   tools/compare/tof_peer.py [--femto build/bin/femto] [--passes 4,16] [--spp 2]
-      [--seeds 1] [-D radius=0.04 ...] [--out build/tof-peer]
+      [--seeds 1] [-D radius=0.04 ...] [--out build/tof-peer] | tools/bench/benchmarks.py set beams-peer
 
 The budget is the number of passes, each of --spp camera samples per pixel
 (ToF-Tungsten's runs took 1 camera sample per pass); everything else is
@@ -31,7 +31,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import media_suite  # noqa: E402  (the port's scene copy, render(), relmse())
 import reference_floor  # noqa: E402  (femto's noise and the reference's floor)
-from provenance import commit, cpu_model, load_line  # noqa: E402
+from provenance import header, load_line  # noqa: E402
 
 # ToF-Tungsten's beams as its README reports them: (passes, CPU s, relMSE).
 PEER = [(4, 9.8, 24.5), (16, 32.1, 21.2), (64, 103.0, 4.09)]
@@ -54,8 +54,8 @@ def main(argv):
     extra = dict(d.split("=", 1) for d in args.define)
     floors = []
     load_start = os.getloadavg()
-    print(f"- machine: {cpu_model()}, {os.cpu_count()} logical CPUs, shared; commit {commit()}")
-    print(f"- command: `tools/compare/tof_peer.py {' '.join(argv)}`; CPU = user + system seconds of the femto process\n")
+    header("transient_beams on ToF-Tungsten's scene, against ToF-Tungsten's beams", "tools/compare/tof_peer.py",
+           f"tools/compare/tof_peer.py {' '.join(argv)}", ["CPU = user + system seconds of the femto process"])
     print("| renderer | budget | CPU s | relMSE | relMSE × CPU | window sum / ref | radius | candidates / query | pair hits / query |")
     print("|---|---|---|---|---|---|---|---|---|")
     for passes, cpu, e in PEER:

@@ -4,8 +4,9 @@
 strategy, scored two ways; prints the Markdown of docs/BENCHMARKS.md's
 "transient_path on the peer's scene" section.
 
-  tools/compare/tof_peer_path.py [--spp 16,64,256,1024] [--protocol-resolution 32] \
-      | tools/bench/replace_doc_section.py docs/BENCHMARKS.md path-peer
+  tools/compare/tof_peer_path.py --only 1 | tools/bench/benchmarks.py set path-peer
+  tools/compare/tof_peer_path.py --only 2 [--protocol-resolution 32] \
+      | tools/bench/benchmarks.py set path-peer-protocols
 
 Strategies (transient_path's parameters): free flights only (equiangular and
 light_directions false: what ToF-Tungsten's path tracer does), equiangular
@@ -151,7 +152,11 @@ def main(argv):
         sys.exit(f"{PEER}/reference.npy not found")
     load_start = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="tof-peer-path-") as out_dir:
-        header("transient_path on the peer's scene: strategies and reference protocols", "tools/compare/tof_peer_path.py",
+        # Each table has a section of its own (tools/bench/benchmarks.py: path-peer, path-peer-protocols).
+        title = {"1": "transient_path on the peer's scene: against ToF-Tungsten's reference",
+                 "2": "transient_path on the peer's scene: reference protocols"}.get(
+                     args.only, "transient_path on the peer's scene: strategies and reference protocols")
+        header(title, "tools/compare/tof_peer_path.py",
                f"tools/compare/tof_peer_path.py --spp {','.join(map(str, args.spp))} "
                f"--protocol-resolution {args.protocol_resolution}"
                f"{' --only ' + args.only if args.only != '12' else ''}",

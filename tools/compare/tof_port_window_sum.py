@@ -7,7 +7,8 @@ ToF-Tungsten's own reference, averaged down to the same size); prints a
 Markdown table and the mean ratio with its standard error over the seeds.
 
   tools/compare/tof_port_window_sum.py [--femto build/bin/femto] [--seeds 8]
-      [--passes 4] [--spp 2] [--resolution 32] [--path-spp 4096]
+      [--passes 4] [--spp 2] [--resolution 32] [--path-spp 4096] \
+      | tools/bench/benchmarks.py set beams-port-window-sum-4    (--passes 16: ...-16)
 
 A bias b shows as a mean ratio 1 + b whatever the seeds; noise as a spread
 between seeds whose mean approaches the reference as 1 / sqrt(seeds).
@@ -55,7 +56,8 @@ def main(argv):
             defines = dict(size, integrator="transient_beams", passes=args.passes, spp=args.spp)
             npy, cpu, _, _ = media_suite.render(args.femto, scene, os.path.join(out, f"beams-{seed}.exr"), defines, seed)
             rows.append((seed, cpu, np.load(npy).astype(np.float64).sum() / ref))
-    header("transient_beams' window sum on the ToF-Tungsten port: bias or noise", "tools/compare/tof_port_window_sum.py",
+    header(f"transient_beams' window sum on the ToF-Tungsten port at {args.passes} passes: bias or noise",
+           "tools/compare/tof_port_window_sum.py",
            f"tools/compare/tof_port_window_sum.py --seeds {args.seeds} --passes {args.passes} "
            f"--spp {args.spp} --resolution {args.resolution} --path-spp {args.path_spp}",
            [f"reference: the mean of two transient_path renders of {args.path_spp} spp (seeds 7919, 7920); "
