@@ -9,8 +9,8 @@
 // long: a fixed number of radii, or a cost rule weighing the build against
 // the crossings the queries will make, BeamMapOptions::crossingDensity),
 // built with a binned surface area heuristic. Choices measured in
-// docs/BENCHMARKS.md ("Beam map") and docs/design/photon-beams.md ("Culling
-// since"); the build is parallel but deterministic (same beams, same tree).
+// docs/BENCHMARKS.md ("Beam map") and docs/design/photon-beams.md ("Culling:
+// the line test"); the build is parallel but deterministic (same beams, same tree).
 #include <cstdint>
 #include <vector>
 

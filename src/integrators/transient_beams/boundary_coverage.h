@@ -1,6 +1,6 @@
 #pragma once
 // The kernel's boundary loss measured on the scene (docs/design/photon-beams.md,
-// "The boundary loss measured on the scene"). boundaryRadius (radius_rule.h)
+// "The boundary loss counted on the scene"). boundaryRadius (radius_rule.h)
 // bounds the loss the extensions leave with a planar model: BoundaryLossLeft
 // of the first-order loss, the grazing beams' share for isotropic beams.
 // Where the boundary curves, lines beside a beam that touches it miss the

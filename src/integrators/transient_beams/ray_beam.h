@@ -56,7 +56,7 @@
 
 namespace femto::beams {
 
-/// Which kernel weights a pair (docs/design/photon-beams.md, "Kernels").
+/// Which kernel weights a pair (docs/design/photon-beams.md, "Kernel value").
 enum class RayBeamKernel {
   /// Jarosz et al. 2011 beam x beam 1D, 1/(2 r sin(theta)), where the whole
   /// kernel chord fits in both segments; the exact cylinder value elsewhere.
