@@ -2,35 +2,20 @@
 // captures (Royo et al., "Non-line-of-sight transient rendering", Computers &
 // Graphics 107, 2022). It renders with an nlos_capture_meter: each camera
 // ray runs from the sensor to a point on the relay wall; from there paths
-// bounce into the hidden scene and back, and light comes only from the laser
-// (a projector with a tiny fov aimed at a wall point, aimed_laser.h). Every
-// contribution is recorded at its exact optical path length (OPL: the sum of
-// its segment lengths times the refractive index crossed, scene units; plus
-// BSDF scattering delays)
-// with the laser's pulse, as transient_path does.
+// bounce into the hidden scene and back, lit only by the laser (a projector
+// with a tiny fov aimed at a wall point, aimed_laser.h). Every contribution is
+// recorded at its exact optical path length with the laser's pulse, as
+// transient_path does. At each surface vertex: next-event estimation to the
+// laser, laser sampling (nlos_laser_sampling: connect to the spot a laser ray
+// lights, unbiased for any spot size; next-event estimation then only at the
+// first vertex) and BSDF or hidden-geometry directions (hidden_geometry.h).
+// The estimators' formulas and how they share paths:
+// docs/design/transient-nlos-path.md; the parameters in the user's words:
+// docs/nlos.md, "Parameters". Depth counts segments (the third bounce sensor
+// -> wall -> hidden object -> wall -> laser has 4). Deterministic for a seed
+// whatever the thread count (per-pixel sampler streams, no integrator state).
 //
-// Estimators at each surface vertex x of a path that has k segments so far:
-//  - next-event estimation to the laser: x -> laser (k + 1 segments);
-//  - laser sampling (nlos_laser_sampling): a ray emitted by the laser picks
-//    the wall point y it lights; x connects to y and y to the laser
-//    (k + 2 segments). The estimate is f_x * f_y * I / p(omega) * cos_y /
-//    |x - y|^2, unbiased for any spot size: y has area density
-//    p(omega) cos_y' / |y - laser|^2. With it on, next-event estimation is
-//    kept only at the first vertex (the path sensor -> wall -> laser), since
-//    every longer path ending at the lit spot is laser-sampled from its
-//    previous vertex: each path is counted by exactly one strategy.
-//  - the next direction comes from the BSDF, or with nlos_hidden_geometry_sampling
-//    from a point on the hidden geometry (hidden_geometry.h), or, with
-//    _do_rroulette, from either with probability 1/2 (one-sample mixture,
-//    density 0.5 p_bsdf + 0.5 p_hidden). Vertices with delta BSDF lobes sample
-//    their BSDF only.
-// Emission of area emitters the path meets is not counted: an NLOS scene is
-// lit by its laser. No participating media.
-//
-// Depth counts segments, as max_depth in femto and mitransient: the direct
-// path sensor -> wall -> laser has 2, the third bounce sensor -> wall ->
-// hidden object -> wall -> laser has 4.
-//
+// clang-format off
 // | name                 | type    | default | meaning                                                     | unit |
 // |----------------------|---------|---------|-------------------------------------------------------------|------|
 // | max_depth            | integer | 6       | longest path in segments (-1: no limit); mitransient's default | - |
@@ -40,17 +25,12 @@
 // | discard_direct_paths | boolean | false   | drop the 2-segment paths sensor -> wall -> laser           | -    |
 // | nlos_laser_sampling  | boolean | false   | connect each vertex to the spot the laser lights            | -    |
 // | nlos_hidden_geometry_sampling | boolean | false | sample directions toward the hidden geometry        | -    |
-// | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random
-// (1/2 each) | - | | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as
-// hidden geometry | - | | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own),
-// "box", "gaussian" | - | | gaussian_stddev      | float   | 2       | its standard deviation | bins | | block_size |
-// integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
-//
-// With the capture meter's account_first_and_last_bounces = false every
-// contribution's OPL drops |sensor - watched wall point| + |laser - aimed
-// wall point|, as mitransient does. The capture is deterministic for a seed
-// whatever the thread count: every pixel's samples come from its own
-// sampler stream (the tile loop), and this integrator keeps no state.
+// | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random (1/2 each) | - |
+// | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as hidden geometry | - |
+// | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own), "box", "gaussian" | - |
+// | gaussian_stddev      | float   | 2       | its standard deviation                                      | bins |
+// | block_size           | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
+// clang-format on
 #include <cmath>
 
 #include <femto/core/plugin.h>
