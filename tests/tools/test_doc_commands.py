@@ -28,6 +28,7 @@ import time
 
 README_MAX_SECONDS = 120  # per command
 FENCE = re.compile(r"^```(\w*)\s*$")
+BUILD = pathlib.Path("build")  # the build folder, set in main()
 
 # (pattern, reason): commands matching are reported as skipped, never run.
 SKIPPED = [
@@ -46,7 +47,11 @@ REWRITES = [
     (r"(-D\s*spp=)\d+", r"\g<1>2", "2 samples per pixel (and per pass)"),
     (r"(--spp\s+)\d+", r"\g<1>2", "2 samples per pixel"),
     (r"(-D\s*passes=)\d+", r"\g<1>1", "one progressive pass"),
+    (r"(--voxels\s+)\d+,\d+,\d+", r"\g<1>16,16,8", "NLOS reconstructions on 16x16x8 voxels"),
     (r"(--time-limit\s+)\S+", r"\g<1>1s", "time-bounded renders stop after 1 s"),
+    (r"(:spp=)\d+(,\d+)*", r"\g<1>1,2", "budget ladders of speed-vs-error runs: 1 and 2 samples per pixel"),
+    (r"(:passes=)\d+(,\d+)*", r"\g<1>1,2", "budget ladders: 1 and 2 passes"),
+    (r"(--reference-budget\s+spp=)\d+", r"\g<1>8", "references of 8 samples per pixel"),
     (r"(--(?:row|column)\s+)(\d+)", lambda m: f"{m.group(1)}{int(m.group(2)) // SCALE}",
      "pixel rows and columns scaled to the 32x32 film"),
     (r"(--pixel\s+)(\d+),(\d+)", lambda m: f"{m.group(1)}{int(m.group(2)) // SCALE},{int(m.group(3)) // SCALE}",
@@ -63,19 +68,19 @@ RENDER_DEFAULTS = [(r"--resolution\b|-D\s*res(olution)?=", f"--resolution {SMALL
 
 # Generic input files the pages name, rendered when a page mentions them.
 FOG = "scenes/cornell-box-fog/scene.xml"
-FIXTURE_RENDER = f"build/bin/femto render {FOG} --resolution {SMALL}x{SMALL} --spp 2 -D bins=64 -D bin_width=0.16 " \
-                 "-D frames=false --no-progress"
+FIXTURE_RENDER = f"build/bin/femto render {FOG} --resolution {SMALL}x{SMALL} --spp 2 -D frames=false --no-progress"
+# file a page names -> (the stem whose files the command writes, the command)
 FIXTURES = {
-    "out.npy": [f"{FIXTURE_RENDER} --seed 1 -o out.exr"],
-    "ref.npy": [f"{FIXTURE_RENDER} --seed 2 -o ref.exr"],
-    "test.npy": [f"{FIXTURE_RENDER} --seed 3 -o test.exr"],
-    "ref.exr": [f"{FIXTURE_RENDER} --seed 2 -o ref.exr"],
-    "test.exr": [f"{FIXTURE_RENDER} --seed 3 -o test.exr"],
-    "path.npy": [f"{FIXTURE_RENDER} --seed 4 -o path.exr"],
-    "reference.npy": [f"{FIXTURE_RENDER} --seed 5 -o reference.exr"],
-    "beams.npy": [f"{FIXTURE_RENDER} --seed 6 -D integrator=transient_beams -D passes=1 -o beams.exr"],
-    "mask.png": [f"{FIXTURE_RENDER} --seed 7 -o mask.exr"],
-    "analytic.csv": ["printf 'time,value\\n4,0.001\\n8,0.002\\n12,0.001\\n' > analytic.csv"],
+    "out.npy": ("out", f"{FIXTURE_RENDER} --seed 1 -o out.exr"),
+    "ref.npy": ("ref", f"{FIXTURE_RENDER} --seed 2 -o ref.exr"),
+    "test.npy": ("test", f"{FIXTURE_RENDER} --seed 3 -o test.exr"),
+    "ref.exr": ("ref", f"{FIXTURE_RENDER} --seed 2 -o ref.exr"),
+    "test.exr": ("test", f"{FIXTURE_RENDER} --seed 3 -o test.exr"),
+    "path.npy": ("path", f"{FIXTURE_RENDER} --seed 4 -o path.exr"),
+    "reference.npy": ("reference", f"{FIXTURE_RENDER} --seed 5 -o reference.exr"),
+    "beams.npy": ("beams", f"{FIXTURE_RENDER} --seed 6 -D integrator=transient_beams -D passes=1 -o beams.exr"),
+    "mask.png": ("mask", f"{FIXTURE_RENDER} --seed 7 -o mask.exr"),
+    "analytic.csv": ("analytic", "printf 'time,value\\n4,0.001\\n8,0.002\\n12,0.001\\n' > analytic.csv"),
 }
 
 
@@ -114,10 +119,26 @@ def skip_reason(command):
             return reason
     if re.search(r"\|\s*jq\b", command) and not shutil.which("jq"):
         return "pipes into jq, which is not installed (not a femto dependency)"
+    if "build/python" in command and not (BUILD / "python" / "femto").exists():
+        return "the Python module is not built (pybind11 missing: docs/python.md)"
     return None
 
 
+def without_comment(command):
+    """The command without a trailing shell comment (a '#' after a blank, outside quotes)."""
+    quote = None
+    for i, c in enumerate(command):
+        if quote:
+            quote = None if c == quote else quote
+        elif c in "\"'":
+            quote = c
+        elif c == "#" and (i == 0 or command[i - 1].isspace()):
+            return command[:i].rstrip()
+    return command
+
+
 def rewrite(command):
+    command = without_comment(command)
     for pattern, replacement, _ in REWRITES:
         command = re.sub(pattern, replacement, command, flags=re.M)
     if re.search(r"(^|\s)(build/bin/)?femto render\b", command):
@@ -189,7 +210,31 @@ def run_server(script, folder, env, timeout, start):
             p.wait()
 
 
-def check_page(root, femto, build, page, report):
+class Fixtures:
+    """The generic input files, each rendered once into a shared folder and
+    linked into the pages' folders that name it."""
+
+    def __init__(self, root, femto, build, folder):
+        self.root, self.femto, self.build, self.folder = root, femto, build, folder
+        self.made = {}
+
+    def link(self, file, into):
+        stem, command = FIXTURES[file]
+        if stem not in self.made:
+            if not (self.folder / "build").exists():
+                workspace(self.root, self.femto, self.build, self.folder)
+            ok, _, output = run(command, self.folder, [], README_MAX_SECONDS)
+            self.made[stem] = None if ok else f"fixture {file}: {command}\n{output}"
+        if self.made[stem]:
+            return self.made[stem]
+        for made in self.folder.iterdir():
+            if (made.name.startswith(stem + ".") or made.name.startswith(stem + "_")) and \
+                    not (into / made.name).exists():
+                (into / made.name).symlink_to(made)
+        return None
+
+
+def check_page(root, femto, build, page, report, fixtures):
     """Runs a page's commands in its own folder; returns the failures."""
     found = commands(page)
     if not found:
@@ -200,12 +245,11 @@ def check_page(root, femto, build, page, report):
         folder = pathlib.Path(tmp)
         workspace(root, femto, build, folder)
         text = page.read_text(encoding="utf-8")
-        for file, setup in FIXTURES.items():
+        for file in FIXTURES:
             if re.search(r"(?<![\w/.-])" + re.escape(file) + r"\b", text) and not (folder / file).exists():
-                for command in setup:
-                    ok, _, output = run(command, folder, [], README_MAX_SECONDS)
-                    if not ok:
-                        failures.append(f"{name}: fixture {file}: {command}\n{output}")
+                problem = fixtures.link(file, folder)
+                if problem:
+                    failures.append(f"{name}: {problem}")
         if failures:
             return failures
         assignments = []
@@ -235,7 +279,7 @@ def self_check(root, femto, build):
         page.write_text("```sh\nbuild/bin/femto render scenes/no-such-scene/scene.xml -o out/x.exr\n"
                         "femto --version\n```\n", encoding="utf-8")
         report = []
-        failures = check_page(pathlib.Path(tmp), femto, build, page, report)
+        failures = check_page(pathlib.Path(tmp), femto, build, page, report, None)
         if len(failures) != 1 or "no-such-scene" not in failures[0]:
             sys.exit("self-check failed: the runner did not report exactly the wrong command:\n" + "\n".join(report))
 
@@ -243,14 +287,18 @@ def self_check(root, femto, build):
 def main(argv):
     if len(argv) < 4:
         sys.exit(__doc__)
-    root, femto, build = pathlib.Path(argv[1]).resolve(), pathlib.Path(argv[2]).resolve(), pathlib.Path(argv[3])
+    global BUILD
+    root, femto, build = (pathlib.Path(a).resolve() for a in argv[1:4])
+    BUILD = build
     if not femto.exists():
         print(f"{femto} is not built: skipped")
         return 77
     self_check(root, femto, build)
     failures, report = [], []
-    for page in pages(root, argv[4:]):
-        failures += check_page(root, femto, build, page, report)
+    with tempfile.TemporaryDirectory(prefix="femto-doc-fixtures-") as shared:
+        fixtures = Fixtures(root, femto, build, pathlib.Path(shared))
+        for page in pages(root, argv[4:]):
+            failures += check_page(root, femto, build, page, report, fixtures)
     print("\n".join(report))
     print("\nrewrites (page command -> small command):")
     for pattern, _, why in REWRITES:
