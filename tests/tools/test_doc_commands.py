@@ -20,6 +20,7 @@ line, 77 when femto cannot render here).
 import os
 import pathlib
 import re
+import selectors
 import shutil
 import subprocess
 import sys
@@ -169,9 +170,8 @@ def workspace(root, femto, build, folder):
 
 def run(command, folder, assignments, timeout):
     """Runs one command with bash; returns (ok, seconds, output)."""
-    env = dict(os.environ, PATH=f"{folder / 'path'}:{os.environ.get('PATH', '/usr/bin:/bin')}",
-               FEMTO_PLUGIN_PATH=str(pathlib.Path(os.readlink(folder / "build" / "bin" / "femto")).resolve().parent /
-                                     "plugins"))
+    env = dict(os.environ, PATH=f"{folder / 'path'}:{os.environ.get('PATH', '/usr/bin:/bin')}")
+    env.pop("FEMTO_PLUGIN_PATH", None)  # femto finds its plugins beside itself, as for a reader
     env.pop("DISPLAY", None)
     env.pop("BROWSER", None)
     server = re.search(r"(^|\s)(build/bin/)?femto view\b", command)
@@ -193,13 +193,17 @@ def run_server(script, folder, env, timeout, start):
                          stderr=subprocess.STDOUT, text=True)
     output = ""
     try:
-        while time.time() - start < timeout:
-            line = p.stdout.readline()
-            if not line:
-                break
-            output += line
-            if re.search(r"http://127\.0\.0\.1:\d+/", line):
-                return True, time.time() - start, output
+        with selectors.DefaultSelector() as selector:
+            selector.register(p.stdout, selectors.EVENT_READ)
+            while time.time() - start < timeout:
+                if not selector.select(timeout=1.0):
+                    continue
+                line = p.stdout.readline()
+                if not line:
+                    break
+                output += line
+                if re.search(r"http://127\.0\.0\.1:\d+/", line):
+                    return True, time.time() - start, output
         return False, time.time() - start, f"no address printed (exit {p.poll()})\n{output}"
     finally:
         p.terminate()
