@@ -8,32 +8,10 @@
 # Inputs (-D): FEMTO_BUILD_DIR EXAMPLE_DIR WORK_DIR GENERATOR BUILTIN_PLUGIN RENDER CHECKER
 cmake_minimum_required(VERSION 3.22)
 
-function(run)
-  cmake_parse_arguments(R "" "OUTPUT_VARIABLE" "COMMAND" ${ARGN})
-  execute_process(COMMAND ${R_COMMAND} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    string(REPLACE ";" " " shown "${R_COMMAND}")
-    message(FATAL_ERROR "failed (exit ${code}): ${shown}\n${out}\n${err}")
-  endif()
-  if(R_OUTPUT_VARIABLE)
-    set(${R_OUTPUT_VARIABLE} "${out}${err}" PARENT_SCOPE)
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/sdk_common.cmake)
+install_and_build_example()
 
-set(prefix ${WORK_DIR}/prefix)
-set(example_build ${WORK_DIR}/example-build)
-file(REMOVE_RECURSE ${WORK_DIR})
-
-run(COMMAND ${CMAKE_COMMAND} --install ${FEMTO_BUILD_DIR} --prefix ${prefix})
-run(COMMAND ${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${example_build} -G ${GENERATOR}
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
-run(COMMAND ${CMAKE_COMMAND} --build ${example_build})
-
-set(femto ${prefix}/bin/femto)
-run(COMMAND ${femto} plugins -p ${example_build} OUTPUT_VARIABLE listing)
-if(NOT listing MATCHES "integrator +ambient_occlusion +ambient occlusion")
-  message(FATAL_ERROR "`femto plugins -p ${example_build}` does not list ambient_occlusion:\n${listing}")
-endif()
+expect_listed("integrator +ambient_occlusion +ambient occlusion" ambient_occlusion)
 if(BUILTIN_PLUGIN AND NOT listing MATCHES "[a-z]+ +${BUILTIN_PLUGIN} ")
   message(FATAL_ERROR "the installed femto does not find its installed plugin ${BUILTIN_PLUGIN}:\n${listing}")
 endif()
