@@ -56,6 +56,7 @@ BeamPass::BeamPass(const BeamSettings& settings, int pass, PhotonPass traced, co
             photons_,
             settings.beamRadius(pass),
             settings.surfaceRadiusOf(pass),
+            settings.surfaceTimeWidthOf(pass),
             traced.photonCount,
             traced.beamPhotonCount > 0 ? traced.beamPhotonCount : traced.photonCount},
       traceSeconds_(traced.traceSeconds),
@@ -77,7 +78,7 @@ CameraStatistics BeamPass::cameraStatistics() const {
 std::string BeamPass::toString() const {
   return str("BeamPass[beams=", beams_.beams().size(), ", surface_photons=", photons_.size(),
              ", photons=", maps_.photonCount, ", beam_photons=", maps_.beamPhotonCount, ", radius=", maps_.beamRadius,
-             ", surface_radius=", maps_.surfaceRadius, "]");
+             ", surface_radius=", maps_.surfaceRadius, ", surface_time_width=", maps_.surfaceTimeWidth, "]");
 }
 
 }  // namespace femto::beams

@@ -41,6 +41,9 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   const char* radiusNote = "a radius in scene units; 0: derived from the scene";
   s.radius = props.getFloat("radius", 0.0f, Range::nonNegative(), radiusNote);
   s.surfaceRadius = props.getFloat("surface_radius", 0.0f, Range::nonNegative(), radiusNote);
+  if (props.has("surface_time_width"))
+    s.surfaceTimeWidth = props.getFloat("surface_time_width", 0.0f, Range::nonNegative(),
+                                        "an OPL width; 0: surface photons deposit at their instant");
   s.gatherFraction = props.getFloat("gather_fraction", s.gatherFraction, Range::leftOpen(0, 1),
                                     "the probability that a camera segment gathers beams");
   s.gatherRoulette = props.getFloat("gather_roulette", s.gatherRoulette, Range::closed(0, 1),
@@ -187,6 +190,23 @@ float BeamSettings::beamRadius(int pass) const {
   return float(radius * (volumeEstimator == VolumeEstimator::Points ? std::sqrt(factor) : factor));
 }
 
-float BeamSettings::surfaceRadiusOf(int pass) const { return float(surfaceRadius * std::sqrt(reduction(alpha, pass))); }
+BeamSettings BeamSettings::withSurfaceTimeWidthFor(const TimeGrid& grid) const {
+  BeamSettings s = *this;
+  if (s.surfaceTimeWidth < 0.0f) {
+    const double w = std::min(TimeBinFraction * grid.binWidth, 2.0 * double(s.surfaceRadius));
+    s.surfaceTimeWidth = grid.bins > 0 && w >= grid.binWidth ? float(w) : 0.0f;
+  }
+  return s;
+}
+
+float BeamSettings::surfaceRadiusOf(int pass) const {
+  const double factor = reduction(alpha, pass);
+  // r^2 by the factor (2D kernel), or by its square root when the time kernel makes it 3D.
+  return float(surfaceRadius * (surfaceTimeWidth > 0.0f ? std::sqrt(std::sqrt(factor)) : std::sqrt(factor)));
+}
+
+float BeamSettings::surfaceTimeWidthOf(int pass) const {
+  return surfaceTimeWidth > 0.0f ? float(surfaceTimeWidth * std::sqrt(reduction(alpha, pass))) : 0.0f;
+}
 
 }  // namespace femto::beams

@@ -52,6 +52,11 @@ struct BeamSettings : PathDepthSettings {
   bool beamPhotonCountGiven = false;  // by the scene: withBeamsForRadius() then keeps it
   float radius = 0.0f;                // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
   float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
+  /// Width (OPL) of the surface photons' causal time kernel in pass 0: a
+  /// photon arriving at a gather point at OPL t deposits uniformly over
+  /// [t, t + w] (docs/design/photon-beams.md, "The surface time kernel").
+  /// Negative (absent): derived, withSurfaceTimeWidthFor(); 0: at the instant t.
+  float surfaceTimeWidth = -1.0f;
   float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
   float gatherRoulette = BeamRoulette::GatherTau;  // T_cam where a gather's Russian roulette starts (0: never)
   float alpha = 0.9f;  // progressive radius reduction, in (0, 1] (docs/design/photon-beams.md: why 0.9)
@@ -124,6 +129,16 @@ struct BeamSettings : PathDepthSettings {
   /// bound by the boundary radius first). 25 (the earlier rule) lost 2-5x.
   static constexpr double TargetPairHits = 300.0;
 
+  /// The surface time kernel's width when none is given (the surface radius
+  /// known): the smaller of TimeBinFraction bins of `grid` (radius_rule.h),
+  /// the footprint the beams' pairs are held to, so that surfaces and media
+  /// keep the film's time resolution alike, and 2 surfaceRadius, the OPL
+  /// light takes to cross the kernel's disc, so that the space-time kernel
+  /// is no longer in time than in space; 0 when that is under a bin (a
+  /// kernel within one bin lowers no bin's variance, and only shifts
+  /// light later) and for steady films (no time axis). Unchanged when given.
+  BeamSettings withSurfaceTimeWidthFor(const TimeGrid& grid) const;
+
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)
   /// (Jarosz, Nowrouzezahrai, Thomas, Sloan, Zwicker 2011, "Progressive Photon
@@ -133,8 +148,15 @@ struct BeamSettings : PathDepthSettings {
   /// points in media are gathered with a 2D kernel too (the disc across the
   /// camera ray, ray_point.h), so their radius follows the surface schedule.
   /// beamRadius() is the medium kernel's radius, for beams or points.
+  /// With a surface time kernel (width w > 0) the surface kernel is 3D, its
+  /// variance ~ 1 / (r^2 w) and its bias ~ a r^2 + b w (the causal kernel
+  /// shifts a profile by w / 2: first order): the volume r^2 w shrinks by
+  /// the same factor, split evenly, r^2 and w each by its square root
+  /// (balancing the two biases' rates minimises the asymptotic MSE;
+  /// docs/design/photon-beams.md, "The surface time kernel").
   float beamRadius(int pass) const;
   float surfaceRadiusOf(int pass) const;
+  float surfaceTimeWidthOf(int pass) const;
 
   /// Photons per pass that leave beams (the estimate's N for beams).
   int64_t beamPhotons() const { return beamPhotonCount > 0 ? std::min(beamPhotonCount, photonCount) : photonCount; }

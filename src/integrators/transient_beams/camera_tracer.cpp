@@ -28,6 +28,8 @@ constexpr int MaxSpecularBounces = 64;
 /// Photons arriving this close to grazing (|cos| w.r.t. the shading normal)
 /// are skipped: f = eval / |cos| would divide by rounding noise.
 constexpr float MinPhotonCosine = 1e-4f;
+/// Chords a ray x beam pair's deposit is cut into at most (PairOpl::pieces).
+constexpr int MaxPairPieces = 32;
 
 }  // namespace
 
@@ -164,6 +166,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   ++stats_.segments;
   stats_.candidates += scratch_.size();
   const double horizon = recorder.horizon();
+  const double pieceTolerance = recorder.timeGrid().bins > 0 ? 0.125 * recorder.timeGrid().binWidth : 0.0;
   const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
   const PhaseFunction& phase = medium.phase();
   for (uint32_t index : scratch_) {
@@ -197,8 +200,21 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     }
     if (value.isBlack()) continue;
     double delay = phase.hasDelay() ? phase.sampleDelay(sampler.next1D()) : 0.0;
-    recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value,
-                       scene.emitters()[beam.emitter]->pulse());
+    const EmissionPulse& pulse = scene.emitters()[beam.emitter]->pulse();
+    // The pair's arrival density: uniform over [oplBegin, oplEnd] unless the
+    // OPL bends within the overlap by more than an eighth of a bin (a
+    // stationary point without observer time, the beam's start nearby):
+    // then chords of it (ray_beam.h, PairOpl::pieces).
+    PairOpl::Piece pieces[MaxPairPieces];
+    const int count = points || !(pieceTolerance > 0.0)
+                          ? 1
+                          : PairOpl(segment, beam, maps_.beamRadius, hit).pieces(pieceTolerance, pieces, MaxPairPieces);
+    if (count <= 1)
+      recorder.addPulsed(opl0 + hit.oplBegin + delay, opl0 + hit.oplEnd + delay, value, pulse);
+    else
+      for (int i = 0; i < count; ++i)
+        recorder.addPulsed(opl0 + pieces[i].begin + delay, opl0 + pieces[i].end + delay,
+                           value * float(pieces[i].weight), pulse);
     ++stats_.pairHits;
   }
 }
@@ -251,7 +267,8 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
     if (norm == 0.0)
       norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
                     std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
-    recorder.addPulsed(opl, opl, s.throughput * f * photon.power * float(norm),
+    // Spread over the causal time kernel [opl, opl + w] (beam_settings.h).
+    recorder.addPulsed(opl, opl + maps_.surfaceTimeWidth, s.throughput * f * photon.power * float(norm),
                        scene.emitters()[photon.emitter]->pulse());
   }
 }

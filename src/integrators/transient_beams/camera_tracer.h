@@ -21,8 +21,9 @@
 // estimation (through media, with its OPL) and indirect light and caustics
 // from the surface photons within the surface radius (uniform disc kernel,
 // Jensen 2001 eq. 7.6, over the disc's area on the surface,
-// surface_coverage.h), each deposited at the camera OPL + the photon's OPL
-// timed along its last leg to the gather point (surface_photon_map.h). Emitters seen
+// surface_coverage.h), each from the camera OPL + the photon's OPL timed
+// along its last leg to the gather point (surface_photon_map.h), spread over
+// a causal time kernel of width w after it (beam_settings.h). Emitters seen
 // directly or through specular chains are recorded as found.
 //
 // Time of emission: every contribution is computed for a Dirac emission at
@@ -88,6 +89,7 @@ struct PassMaps {
   const SurfacePhotonMap& photons;
   float beamRadius = 0.0f;
   float surfaceRadius = 0.0f;
+  float surfaceTimeWidth = 0.0f;  // the surface photons' causal time kernel (OPL; 0: instants)
   uint64_t photonCount = 1;      // photons traced in the pass (the surface estimate's N)
   uint64_t beamPhotonCount = 1;  // those that left beams (the beam estimate's N)
 };

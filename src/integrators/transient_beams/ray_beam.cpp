@@ -106,60 +106,8 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   hit.tBeam = std::clamp(s0 + tRay * cosTheta, 0.0f, length);
   hit.kernel = oneD ? 0.5f * invSinTheta / r : (tEnd - tBegin) * InvPi / r2;
 
-  // Causal OPL (docs/design/photon-beams.md, "Causality"): light at camera point
-  // x(t) came from the beam's start b, which it left at beam.opl, and
-  // travelled at least |x(t) - b| in the medium (eta_b): g(t) = eta_c t +
-  // eta_b |x(t) - b|. Away from the start |x(t) - b| = s(t) + gap^2 / (2 s):
-  // the projection's OPL eta_c t + eta_b s(t) up to second order; near the
-  // start (the kernel straddling the light cone) it keeps every estimate
-  // after the light could arrive. g is convex in t, so the straight line
-  // between its values at the overlap's ends lies above it: the deposit,
-  // uniform over [g(tBegin), g(tEnd)], is that line, never earlier than g,
-  // and by the triangle inequality never before the earliest path
-  // b -> x(t) -> ray.o.
-  // A beam extended before its start (boundary_extension.h: it entered its
-  // medium or left a surface at b) is timed from the extension's start
-  // b - e v, e = before r, at the OPL its light would have there, beam.opl -
-  // eta_b e: for points on the extension (s < 0) that is the continuation
-  // beam.opl + eta_b s, the time of the real beams the extension stands for
-  // (across a planar boundary the tangential gradient of the arrival time is
-  // continuous, Snell's phase matching, so the neighbours that enter or
-  // leave the boundary near x arrive there at beam.opl + eta_b s(x));
-  // measured from b instead (|x - b| = |s| + ...) it was 2 eta_b |s| late,
-  // up to 32 eta_b r for grazing beams: issue 14's random media seed 2 put
-  // energy 5+ bins after the latest arrival at r = 0.083
-  // (docs/design/photon-beams.md, "Timing the extension before a beam's start").
-  // A beam that entered through a pass-through boundary where the index
-  // changed (light changes speed, not direction: the random media family)
-  // has a tilted wavefront: light at x crossed the boundary at another
-  // point and ran lambda(x) = s(x) + q.(x - b) in the medium, arriving at
-  // P(x) = beam.opl + eta_b s(x) + offsetDelay.(x - b) (a plane wave through
-  // a planar boundary, boundary_extension.h). On the extension (the pair's
-  // point before the start) the estimate stands for exactly that light, and
-  // the continuation at eta_b is earlier by (eta_b - eta_before)(|s| +
-  // q.(x - b)) > 0: random media seed 21 put energy a bin before the
-  // earliest arrival. The later of the two is taken: P is linear in t and
-  // the continuation convex, so their maximum is convex and the chord
-  // argument holds; P leaves out the lateral path, and alone it was early
-  // by eta_b u^2 / 2R for a beam entering a sphere of radius R head-on
-  // (camera points at offset u lie before its start there: seed 23 with
-  // r / 4 put energy into the bin before the arrival). On the
-  // beam itself the estimate keeps its own light's time above (the tilt
-  // moves neighbours either way by offsetDelay.(x - b), a blur without a
-  // mean shift). offsetDelay is zero for every other beam.
-  const float extension = beam.before * r;
-  const Vec3f fromStart = delta + v * extension;  // x(t) - (b - e v) = fromStart + t w
-  const double shift = -double(beam.eta) * double(extension);
-  const bool tilted = beam.offsetDelay.x != 0.0f || beam.offsetDelay.y != 0.0f || beam.offsetDelay.z != 0.0f;
-  const bool onExtension = tilted && double(s0) + double(tRay) * double(cosTheta) < 0.0;
-  auto opl = [&](float t) {
-    const double continuation = shift + double(beam.eta) * startDistance(fromStart, w, t);
-    if (!onExtension) return double(segment.eta) * t + continuation;
-    const double s = double(s0) + double(t) * double(cosTheta);
-    const double wave =
-        double(beam.eta) * s + double(dot(beam.offsetDelay, delta)) + double(t) * double(dot(beam.offsetDelay, w));
-    return double(segment.eta) * t + std::max(continuation, wave);
-  };
+  // Causal OPL: PairOpl below.
+  const PairOpl opl(segment, beam, r, hit);
   const double oplA = opl(tBegin), oplB = opl(tEnd);
   hit.oplBegin = std::min(oplA, oplB);
   hit.oplEnd = std::max(oplA, oplB);
@@ -168,6 +116,126 @@ bool rayBeamIntersect(const CameraSegment& segment, const Beam& beam, float radi
   // directions or indices propagate to here).
   return hit.kernel > 0.0f && std::isfinite(hit.kernel) && std::isfinite(hit.tRay) && std::isfinite(hit.tBeam) &&
          std::isfinite(hit.oplBegin) && std::isfinite(hit.oplEnd);
+}
+
+
+// Causal OPL (docs/design/photon-beams.md, "Causality"): light at camera point
+// x(t) came from the beam's start b, which it left at beam.opl, and
+// travelled at least |x(t) - b| in the medium (eta_b): g(t) = eta_c t +
+// eta_b |x(t) - b|. Away from the start |x(t) - b| = s(t) + gap^2 / (2 s):
+// the projection's OPL eta_c t + eta_b s(t) up to second order; near the
+// start (the kernel straddling the light cone) it keeps every estimate
+// after the light could arrive. g is convex in t, so the straight line
+// between its values at the overlap's ends lies above it: the deposit,
+// uniform over [g(tBegin), g(tEnd)], is that line, never earlier than g,
+// and by the triangle inequality never before the earliest path
+// b -> x(t) -> ray.o.
+// A beam extended before its start (boundary_extension.h: it entered its
+// medium or left a surface at b) is timed from the extension's start
+// b - e v, e = before r, at the OPL its light would have there, beam.opl -
+// eta_b e: for points on the extension (s < 0) that is the continuation
+// beam.opl + eta_b s, the time of the real beams the extension stands for
+// (across a planar boundary the tangential gradient of the arrival time is
+// continuous, Snell's phase matching, so the neighbours that enter or
+// leave the boundary near x arrive there at beam.opl + eta_b s(x));
+// measured from b instead (|x - b| = |s| + ...) it was 2 eta_b |s| late,
+// up to 32 eta_b r for grazing beams: issue 14's random media seed 2 put
+// energy 5+ bins after the latest arrival at r = 0.083
+// (docs/design/photon-beams.md, "Timing the extension before a beam's start").
+// A beam that entered through a pass-through boundary where the index
+// changed (light changes speed, not direction: the random media family)
+// has a tilted wavefront: light at x crossed the boundary at another
+// point and ran lambda(x) = s(x) + q.(x - b) in the medium, arriving at
+// P(x) = beam.opl + eta_b s(x) + offsetDelay.(x - b) (a plane wave through
+// a planar boundary, boundary_extension.h). On the extension (the pair's
+// point before the start) the estimate stands for exactly that light, and
+// the continuation at eta_b is earlier by (eta_b - eta_before)(|s| +
+// q.(x - b)) > 0: random media seed 21 put energy a bin before the
+// earliest arrival. The later of the two is taken: P is linear in t and
+// the continuation convex, so their maximum is convex and the chord
+// argument holds; P leaves out the lateral path, and alone it was early
+// by eta_b u^2 / 2R for a beam entering a sphere of radius R head-on
+// (camera points at offset u lie before its start there: seed 23 with
+// r / 4 put energy into the bin before the arrival). On the
+// beam itself the estimate keeps its own light's time above (the tilt
+// moves neighbours either way by offsetDelay.(x - b), a blur without a
+// mean shift). offsetDelay is zero for every other beam.
+PairOpl::PairOpl(const CameraSegment& segment, const Beam& beam, float radius, const RayBeamHit& hit)
+    : tBegin_(hit.tRayBegin), tEnd_(hit.tRayEnd), w_(segment.ray.d), offsetDelay_(beam.offsetDelay),
+      delta_(segment.ray.o - beam.origin) {
+  const float extension = beam.before * radius;
+  fromStart_ = delta_ + beam.direction * extension;  // x(t) - (b - e v) = fromStart + t w
+  shift_ = -double(beam.eta) * double(extension);
+  etaBeam_ = beam.eta;
+  etaCamera_ = segment.eta;
+  s0_ = dot(delta_, beam.direction);
+  cosTheta_ = dot(w_, beam.direction);
+  const bool tilted = offsetDelay_.x != 0.0f || offsetDelay_.y != 0.0f || offsetDelay_.z != 0.0f;
+  onExtension_ = tilted && s0_ + double(hit.tRay) * cosTheta_ < 0.0;
+}
+
+double PairOpl::operator()(float t) const {
+  const double continuation = shift_ + etaBeam_ * startDistance(fromStart_, w_, t);
+  if (!onExtension_) return etaCamera_ * t + continuation;
+  const double s = s0_ + double(t) * cosTheta_;
+  const double wave = etaBeam_ * s + double(dot(offsetDelay_, delta_)) + double(t) * double(dot(offsetDelay_, w_));
+  return etaCamera_ * t + std::max(continuation, wave);
+}
+
+double PairOpl::slope(float t) const {
+  const Vec3f x = fromStart_ + w_ * t;
+  const double len = std::sqrt(double(dot(x, x)));
+  const double continuation = len > 0.0 ? etaBeam_ * double(dot(x, w_)) / len : 0.0;
+  if (!onExtension_) return etaCamera_ + continuation;
+  const double s = s0_ + double(t) * cosTheta_;
+  const double wave = etaBeam_ * s + double(dot(offsetDelay_, delta_)) + double(t) * double(dot(offsetDelay_, w_));
+  const double cont = shift_ + etaBeam_ * len;
+  return etaCamera_ + (cont >= wave ? continuation : etaBeam_ * cosTheta_ + double(dot(offsetDelay_, w_)));
+}
+
+int PairOpl::pieces(double tolerance, Piece* out, int maxPieces) const {
+  // Split at the stationary point, if inside the overlap: with observer time
+  // off (eta_c = 0) where the camera ray passes closest to the start; in
+  // general g'(t) = eta_c + eta_b (ws + t) / |x(t)| = 0 at
+  // t* = -ws - h eta_c / sqrt(eta_b^2 - eta_c^2) (h: the start's distance to the ray's line).
+  float ends[3] = {tBegin_, tEnd_, tEnd_};
+  int halves = 1;
+  const double overlap = double(tEnd_) - double(tBegin_);
+  if (!onExtension_) {
+    const double ws = double(dot(fromStart_, w_));
+    const Vec3f perp = fromStart_ - w_ * float(ws);
+    const double h = std::sqrt(double(dot(perp, perp)));
+    if (etaCamera_ < etaBeam_) {
+      const double tStar = -ws - h * etaCamera_ / std::sqrt(etaBeam_ * etaBeam_ - etaCamera_ * etaCamera_);
+      if (tStar > tBegin_ && tStar < tEnd_) ends[1] = float(tStar), halves = 2;
+    }
+    // |x(t) - start| bends at most 1 / h (its second derivative h^2 / |x - start|^3):
+    // a chord over the overlap lies within eta_b L^2 / (8 h) of it.
+    if (halves == 1 && etaBeam_ * overlap * overlap <= 8.0 * h * tolerance) return 1;
+  }
+  int n[2] = {1, 1}, total = 0;
+  for (int k = 0; k < halves; ++k) {
+    const double len = double(ends[k + 1]) - double(ends[k]);
+    const double bend = std::abs(slope(ends[k + 1]) - slope(ends[k])) * len / 4.0;
+    n[k] = tolerance > 0.0 && bend > tolerance ? int(std::min(std::ceil(bend / tolerance), 1e6)) : 1;
+    total += n[k];
+  }
+  if (total > maxPieces) {  // share maxPieces between the halves by their need
+    n[0] = halves == 2 ? std::clamp(int(double(maxPieces) * n[0] / total), 1, maxPieces - 1) : maxPieces;
+    n[1] = maxPieces - n[0];
+  }
+  int m = 0;
+  for (int k = 0; k < halves; ++k) {
+    const double len = double(ends[k + 1]) - double(ends[k]);
+    double ga = (*this)(ends[k]);
+    for (int i = 0; i < n[k]; ++i, ++m) {
+      const float b = i + 1 == n[k] ? ends[k + 1] : float(double(ends[k]) + len * (i + 1) / n[k]);
+      const double gb = (*this)(b);
+      out[m] = Piece{std::min(ga, gb), std::max(ga, gb), len / n[k] / overlap};
+      ga = gb;
+    }
+  }
+  return m;
 }
 
 }  // namespace femto::beams

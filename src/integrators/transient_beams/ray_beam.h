@@ -84,6 +84,42 @@ struct RayBeamHit {
   bool oneD = false;
 };
 
+/// The OPL a pair deposits at camera parameter t, relative to (camera OPL at
+/// ray.o) + beam.opl: the causal timing rayBeamIntersect derives (ray_beam.cpp:
+/// light at x(t) left the beam's start, or its extension's, and ran straight;
+/// the tilted wavefront of a beam that entered through a boundary of another
+/// index). Convex in t. Without observer time (segment.eta = 0) it is
+/// stationary where the camera ray passes closest to that start: the pair's
+/// arrival density there is an integrable (tau - tau_0)^(-1/2) peak, which a
+/// deposit uniform between the overlap's end values misses (PairOpl::pieces).
+struct PairOpl {
+  PairOpl(const CameraSegment& segment, const Beam& beam, float radius, const RayBeamHit& hit);
+  double operator()(float t) const;
+  /// dOPL/dt (one-sided where the tilted wavefront takes over).
+  double slope(float t) const;
+  /// A part of the pair's deposit: `weight` of it spread uniformly over [begin, end].
+  struct Piece {
+    double begin = 0.0, end = 0.0, weight = 1.0;
+  };
+  /// The pair's deposit as pieces of the overlap, each spread uniformly
+  /// between its ends' OPLs (chords of the convex OPL) and weighted by its
+  /// share of the overlap's length: split at the stationary point, and cut
+  /// evenly into as many as keep every chord within `tolerance` of the OPL
+  /// it stands for (a chord over [a, b] lies at most (b - a)(g'(b) - g'(a)) / 4
+  /// above a convex g), at most `maxPieces` (>= 2) in all. Returns the
+  /// count written to `out`, or 1 with `out` untouched where one piece, the
+  /// hit's [oplBegin, oplEnd], already holds: nearly every pair with
+  /// observer time.
+  int pieces(double tolerance, Piece* out, int maxPieces) const;
+
+ private:
+  float tBegin_, tEnd_;
+  Vec3f fromStart_, w_, offsetDelay_;
+  Vec3f delta_;
+  double shift_, etaBeam_, etaCamera_, s0_, cosTheta_;
+  bool onExtension_;
+};
+
 /// The beam map's cull (BeamMap::Cull::Lines): true only when the segment's
 /// line passes the beam's axis farther than `radius`, so that the segment
 /// misses the kernel region wherever its ends are. About half the work of

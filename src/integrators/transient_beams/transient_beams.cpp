@@ -37,8 +37,13 @@
 // | surface_radius | float   | derived        | surface photon kernel radius of the first pass; 0 or      | scene  |
 // |                |         |                | absent: 64 nearest pass-0 photons, at most 2 pixels       |        |
 // |                |         |                | (surface_radius_rule.h); 0.01 diagonal without probes     |        |
+// | surface_time_width | float | 4 bins       | width of the surface photons' causal time kernel in the   | OPL    |
+// |                |         |                | first pass (each deposits over [t, t + w] after its       |        |
+// |                |         |                | arrival t); absent: 4 film bins (the beams' footprint);   |        |
+// |                |         |                | 0: at the instant t                                       |        |
 // | alpha          | float   | 0.9            | radius reduction: r_{i+1} = r_i (i+alpha)/(i+1) (beams),  | -      |
-// |                |         |                | r^2 likewise (surfaces)                                   |        |
+// |                |         |                | r^2 likewise (surfaces; r^2 and w each by the root of the |        |
+// |                |         |                | factor with the time kernel)                              |        |
 // | max_depth      | integer | -1             | longest camera + photon path in segments (-1: no limit)   | -      |
 // | rr_depth       | integer | 5              | photon segments before Russian roulette                   | -      |
 // | store          | string  | "all"          | beams stored: "all" orders, or "single" scattering only   | -      |
@@ -197,6 +202,11 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           logInfo("transient_beams: surface radius ", settings.surfaceRadius, " (density ", surface.density,
                   ", pixels ", surface.pixels, ")");
         }
+        // The surface time kernel's width, unless given: the beams' time footprint in the film's bins.
+        if (pass == 0 && settings.surfaceTimeWidth < 0.0f) {
+          settings = settings.withSurfaceTimeWidthFor(filmTimeGrid(scene));
+          logInfo("transient_beams: surface time width ", settings.surfaceTimeWidth, " (OPL)");
+        }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced), &scene, horizon);
       };
       // Photons are traced with the thread count the user asked for.
@@ -219,7 +229,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
 
   std::string toString() const override {
     return str("TransientBeamsIntegrator[passes=", settings_.passes, ", photon_count=", settings_.photonCount,
-               ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius, ", alpha=", settings_.alpha,
+               ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius,
+               ", surface_time_width=", settings_.surfaceTimeWidth, ", alpha=", settings_.alpha,
                ", max_depth=", settings_.maxDepth,
                ", store=", settings_.store == beams::BeamStore::All ? "all" : "single",
                ", volume_estimator=", settings_.volumeEstimator == beams::VolumeEstimator::Points ? "points" : "beams",

@@ -222,3 +222,69 @@ TEST(RayBeamTransient, OneDKernelMatchesTheBlurredBeamAcrossBins) {
 
 }  // namespace
 }  // namespace femto::beams
+
+namespace femto::beams {
+
+// Without observer time a pair's OPL along the camera segment, eta_b |x(t) - b|,
+// is stationary where the ray passes closest to the beam's start b: the
+// deposit's density is the push-forward of uniform t through that hyperbola,
+// with an integrable peak at its minimum. PairOpl::pieces' chords must match
+// the exact push-forward's CDF (|{t in overlap : g(t) <= tau}| / overlap)
+// within the tolerance asked for, at every tau; the overlap's two end values
+// alone (one uniform deposit) miss every arrival before the earlier end.
+TEST(RayBeamTransient, PiecesFollowTheStationaryOplWithoutObserverTime) {
+  Beam beam;
+  beam.origin = Point3f(0.0f, 0.3f, 0.0f);  // 0.3 from the camera ray's line (the x axis)
+  beam.direction = normalize(Vec3f(0.05f, -1.0f, 0.0f));
+  beam.length = 2.0f, beam.eta = 1.33f;
+  CameraSegment seg;
+  seg.ray = Ray(Point3f(-1.0f, 0.0f, 0.0f), Vec3f(1.0f, 0.0f, 0.0f));
+  seg.tMax = 3.0f, seg.eta = 0.0f;  // observer time off
+  const float radius = 0.2f;
+  RayBeamHit hit;
+  ASSERT_TRUE(rayBeamIntersect(seg, beam, radius, hit, RayBeamKernel::Cylinder));
+  const double a = hit.tRayBegin, b = hit.tRayEnd, tStar = 1.0;  // closest to the start at x = 0
+  ASSERT_LT(a, tStar);
+  ASSERT_GT(b, tStar);
+  const PairOpl g(seg, beam, radius, hit);
+  const double h = 0.3, eta = 1.33;
+  auto exactCdf = [&](double tau) {  // |{t in [a, b] : eta sqrt(h^2 + (t - t*)^2) <= tau}| / (b - a)
+    if (tau <= eta * h) return 0.0;
+    const double u = std::sqrt(std::pow(tau / eta, 2) - h * h);
+    return std::max(0.0, std::min(b, tStar + u) - std::max(a, tStar - u)) / (b - a);
+  };
+  const double tolerance = 0.002;
+  PairOpl::Piece pieces[64];
+  const int n = g.pieces(tolerance, pieces, 64);
+  ASSERT_GE(n, 2) << "split at the stationary point";
+  double weights = 0.0;
+  for (int i = 0; i < n; ++i) {
+    weights += pieces[i].weight;
+    EXPECT_GE(pieces[i].begin, eta * h - 1e-6) << "before the earliest arrival";
+  }
+  EXPECT_NEAR(weights, 1.0, 1e-9);
+  auto pieceCdf = [&](double tau) {
+    double c = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const PairOpl::Piece& p = pieces[i];
+      const double f = p.end > p.begin ? std::clamp((tau - p.begin) / (p.end - p.begin), 0.0, 1.0) : tau >= p.begin;
+      c += p.weight * f;
+    }
+    return c;
+  };
+  // Each chord lies within `tolerance` above the OPL it stands for, so the
+  // pieces' CDF at tau is between the exact CDF at tau - tolerance and at tau.
+  const double lo = eta * h, hi = std::max(g(float(a)), g(float(b)));
+  double worstUniform = 0.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double tau = lo + (hi - lo) * k / 2000.0;
+    EXPECT_LE(pieceCdf(tau), exactCdf(tau) + 1e-6) << tau;
+    EXPECT_GE(pieceCdf(tau), exactCdf(tau - tolerance) - 1e-6) << tau;
+    const double uniform = std::clamp((tau - hit.oplBegin) / (hit.oplEnd - hit.oplBegin), 0.0, 1.0);
+    worstUniform = std::max(worstUniform, std::abs(uniform - exactCdf(tau)));
+  }
+  // The single deposit between the ends' values is off by a fifth of the mass or more here.
+  EXPECT_GT(worstUniform, 0.2);
+}
+
+}  // namespace femto::beams

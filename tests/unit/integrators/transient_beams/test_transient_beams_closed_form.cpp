@@ -101,6 +101,41 @@ void expectClosedForm(const MediaScene& m, const std::string& name, int passes, 
   }
 }
 
+/// Per fine bin (the image sums of each of the window's bins), at defaults:
+/// within 5 standard errors of the runs' mean plus the same derived bounds
+/// as expectClosedForm's, here for a fine bin's two edges: half the mass of
+/// the ceil(K/2) bins on each side of each edge (the pairs' footprint), and
+/// the boundary and light bounds. Without observer time the arrival density
+/// along a camera ray peaks where it passes closest to the light (its OPL
+/// there is stationary): a pair's deposit must follow that peak
+/// (ray_beam.h, PairOpl::pieces), or the bins around it are off.
+void expectClosedFormPerBin(const MediaScene& m, const std::string& name, int passes, int runs) {
+  passes = environmentCount("FEMTO_CLOSED_FORM_PASSES", passes);
+  runs = environmentCount("FEMTO_CLOSED_FORM_RUNS", runs);
+  auto scene = loadSceneStrict(m.xml(beamsIntegrator(m, passes)));
+  const std::vector<double> exact = m.closedFormImageSums(*scene, 5000, 16);
+  std::vector<Mean> est = imageSums(scene, name, runs);
+  const int bins = m.grid.bins, reach = int(std::ceil(0.5 * beams::TimeBinFraction));
+  auto mass = [&](int from, int to) {
+    double sum = 0.0;
+    for (int b = std::max(from, 0); b < std::min(to, bins); ++b) sum += exact[size_t(b)];
+    return sum;
+  };
+  const double boundary = (m.model.bounded ? beams::BoundaryBiasTarget : 0.0) + beams::LightBiasTarget;
+  double chi2 = 0.0;
+  int dof = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double slack = 0.5 * (mass(b - reach, b + reach) + mass(b + 1 - reach, b + 1 + reach));
+    const double se = est[size_t(b)].standardError(), bias = boundary * exact[size_t(b)] + slack;
+    std::printf("%s bin %d: beams %.6g +- %.2g, closed form %.6g (%+.2f %%), bias bound %.2g\n", name.c_str(), b,
+                est[size_t(b)].mean(), se, exact[size_t(b)], 100 * (est[size_t(b)].mean() / exact[size_t(b)] - 1),
+                bias);
+    EXPECT_NEAR(est[size_t(b)].mean(), exact[size_t(b)], 5 * se + bias) << name << " bin " << b;
+    if (se > 0.0) chi2 += std::pow((est[size_t(b)].mean() - exact[size_t(b)]) / se, 2), ++dof;
+  }
+  std::printf("%s: chi2 / dof %.2f over %d bins (noise alone: about 1)\n", name.c_str(), chi2 / std::max(dof, 1), dof);
+}
+
 MediaScene unbounded(bool observerTime) {
   MediaScene m;
   m.model.bounded = false;
@@ -190,4 +225,30 @@ TEST(TransientBeamsClosedForm, CameraAndLightInsideASphereWithoutObserverTime) {
 }
 TEST(TransientBeamsClosedForm, SphereLitBesideTheCameraObliquePairs) {
   expectClosedForm(litBesideTheCamera(), "oblique", 3, 4);
+}
+
+// Without observer time, per fine bin (issue 33: the bins around the
+// stationary point read up to 58 % off with the deposit uniform between the
+// overlap's ends).
+TEST(TransientBeamsClosedForm, UnboundedMediumWithoutObserverTimePerBin) {
+  expectClosedFormPerBin(unbounded(false), "unbounded-no-ot-bins", 3, 6);
+}
+TEST(TransientBeamsClosedForm, FineBinsWithoutObserverTimePerBin) {
+  MediaScene m = sphere(false);
+  m.grid.bins = 64;
+  m.grid.binWidth = 0.025;
+  m.grid.start = m.earliest - 2 * m.grid.binWidth;
+  expectClosedFormPerBin(m, "sphere-no-ot-fine", 3, 6);
+}
+TEST(TransientBeamsClosedForm, LitBesideTheCameraWithoutObserverTimePerBin) {
+  MediaScene m = litBesideTheCamera();
+  m.model.observerTime = false;
+  m.earliest = m.earliestArrival();
+  m.grid.bins = 64;
+  m.grid.binWidth = 0.01;
+  m.grid.start = m.earliest - 2 * m.grid.binWidth;
+  expectClosedFormPerBin(m, "beside-no-ot-fine", 3, 6);
+}
+TEST(TransientBeamsClosedForm, CameraAndLightInsideASphereWithoutObserverTimePerBin) {
+  expectClosedFormPerBin(sphereFromInside(false), "sphere-inside-no-ot-bins", 3, 6);
 }

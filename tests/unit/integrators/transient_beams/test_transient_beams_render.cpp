@@ -214,7 +214,7 @@ std::string foggyRoom(const std::string& integratorParams) {
 }
 
 const char* BeamParams = R"(<integer name="photon_count" value="3000"/><float name="radius" value="0.05"/>
-    <float name="surface_radius" value="0.1"/><float name="alpha" value="0.5"/>)";
+    <float name="surface_radius" value="0.1"/><float name="surface_time_width" value="0.05"/><float name="alpha" value="0.5"/>)";
 
 }  // namespace
 
@@ -268,15 +268,17 @@ TEST(TransientBeamsRender, GatherRouletteKeepsTheExpectation) {
 }
 
 TEST(TransientBeamsRender, PassesAverageIntoTheFilmWithShrinkingRadii) {
-  // Two passes (radius r, then alpha r; surface radius sqrt(alpha) r_s) equal
-  // the mean of the two one-pass renders that use those radii and seeds.
+  // Two passes (radius r, then alpha r; surface radius alpha^(1/4) r_s and
+  // time width sqrt(alpha) w, beam_settings.h) equal the mean of the two
+  // one-pass renders that use those radii and seeds.
   auto dir = scratchDir("beams-passes");
   auto twoPasses = loadSceneStrict(foggyRoom(str(BeamParams, R"(<integer name="passes" value="2"/>)")));
   auto first = loadSceneStrict(foggyRoom(BeamParams));
   auto second = loadSceneStrict(
       foggyRoom(str(R"(<integer name="photon_count" value="3000"/>
     <float name="radius" value=")",
-                    0.05f * 0.5f, R"("/><float name="surface_radius" value=")", 0.1f * std::sqrt(0.5f), R"("/>)")));
+                    0.05f * 0.5f, R"("/><float name="surface_radius" value=")", 0.1f * std::sqrt(std::sqrt(0.5f)),
+                    R"("/><float name="surface_time_width" value=")", 0.05f * std::sqrt(0.5f), R"("/>)")));
   const uint64_t seed = 11;
   Rendered a = render(twoPasses, dir / "a.exr", seed), b = render(first, dir / "b.exr", seed),
            c = render(second, dir / "c.exr", mixSeed(seed, 1));
