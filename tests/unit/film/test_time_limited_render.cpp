@@ -30,8 +30,8 @@ std::string bytesOf(const std::filesystem::path& path) {
 std::shared_ptr<Scene> tinyFog(const std::string& integrator, const std::string& film = "transient") {
   LoadOptions options;
   options.strict = true;
-  options.defines = {{"resolution", "12"}, {"bins", "16"},       {"bin_width", "0.64"},
-                     {"frames", "false"}, {"integrator", integrator}, {"film", film}};
+  options.defines = {{"resolution", "12"}, {"integrator", integrator}, {"film", film}};
+  if (film == "transient") options.defines.insert({{"bins", "16"}, {"bin_width", "0.64"}, {"frames", "false"}});
   if (integrator == "transient_beams")
     options.defines.insert({{"photon_count", "2000"}, {"beam_photon_count", "300"}, {"spp", "2"}});
   else

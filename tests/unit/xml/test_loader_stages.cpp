@@ -133,26 +133,15 @@ TEST(LoaderExpand, IntegratorFileReplacesTheScenesIntegratorWhereverItWasInclude
   // the scene's $names; its <default> does not override the scene's.
   auto dir = freshDir("integrator_file");
   writeFile(dir / "main.xml",
-            "<scene version="3.0.0">
-  <default name="depth" value="5"/>
-  <default name="spp" value="64"/>
-"
-            "  <include filename="integrator-path.xml"/>
-  <bsdf type="diffuse"/>
-</scene>
-");
+            "<scene version=\"3.0.0\">\n  <default name=\"depth\" value=\"5\"/>\n  <default name=\"spp\" value=\"64\"/>\n"
+            "  <include filename=\"integrator-path.xml\"/>\n  <bsdf type=\"diffuse\"/>\n</scene>\n");
   writeFile(dir / "integrator-path.xml",
-            "<scene version="3.0.0"><integrator type="path"><integer name="max_depth" value="$depth"/>"
-            "</integrator></scene>
-");
+            "<scene version=\"3.0.0\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"$depth\"/>"
+            "</integrator></scene>\n");
   writeFile(dir / "mine.xml",
-            "<scene version="3.0.0">
-  <default name="spp" value="8"/>
-"
-            "  <integrator type="direct"><integer name="max_depth" value="$depth"/><integer name="n" value="$spp"/>"
-            "</integrator>
-</scene>
-");
+            "<scene version=\"3.0.0\">\n  <default name=\"spp\" value=\"8\"/>\n"
+            "  <integrator type=\"direct\"><integer name=\"max_depth\" value=\"$depth\"/><integer name=\"n\" value=\"$spp\"/>"
+            "</integrator>\n</scene>\n");
   LoadOptions options;
   options.integratorFile = dir / "mine.xml";
   auto p = parseFile(dir / "main.xml", options);

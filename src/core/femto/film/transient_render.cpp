@@ -39,7 +39,7 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
   checkEmitterPulses(scene, film);
   TransientOutput output(film, options.output);
   PassSchedule schedule(options, passes);
-  const double cpuStart = clockSeconds(RenderClock::Cpu), wallStart = clockSeconds(RenderClock::Wall);
+  const double cpuStart = clockSeconds(RenderClock::Cpu);
   // One bar for the whole job: every pass, one unit per pixel, then the
   // frames, counted as one more pass (they read the whole volume back).
   const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
@@ -60,8 +60,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     passOptions.seed = passSeed(options.seed, pass);
     accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
                                                 TransientTile::bytesPerPixel(film.timeGrid().bins), &progress));
+    if (!stats.completed) break;  // a cancelled pass is partial: not counted
     ++stats.passes;
-    if (!stats.completed) break;
   }
   stats.timeLimitReached = schedule.limitReached();
   stats.cpuSeconds = clockSeconds(RenderClock::Cpu) - cpuStart;
@@ -79,9 +79,7 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
                       options.seed,
                       options.timeLimit,
                       options.timeLimit > 0.0 ? clockName(options.timeClock) : "",
-                      stats.timeLimitReached,
-                      clockSeconds(RenderClock::Wall) - wallStart,
-                      stats.cpuSeconds};
+                      stats.timeLimitReached};
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);

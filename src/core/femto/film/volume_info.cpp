@@ -52,8 +52,6 @@ void writeVolumeInfo(const std::filesystem::path& path, const VolumeInfo& info) 
     if (r->timeLimit > 0.0)
       os << ",\n  \"time_limit_seconds\": " << jsonNumber(r->timeLimit) << ",\n  \"time_clock\": "
          << jsonQuote(r->timeClock) << ",\n  \"time_limit_reached\": " << (r->timeLimitReached ? "true" : "false");
-    os << ",\n  \"render_seconds\": " << jsonNumber(r->seconds) << ",\n  \"render_cpu_seconds\": "
-       << jsonNumber(r->cpuSeconds);
   }
   os << "\n}\n";
   std::string text = os.str();
@@ -100,8 +98,6 @@ std::optional<VolumeInfo> readVolumeInfo(const std::filesystem::path& volume) {
       if (auto b = json.find("time_limit_reached"); b != json.end())
         if (const auto* reached = std::get_if<bool>(&b->second)) r.timeLimitReached = *reached;
     }
-    r.seconds = numberField(json, "render_seconds", path);
-    r.cpuSeconds = numberField(json, "render_cpu_seconds", path);
     info.render = r;
   }
   auto filter = json.find("time_filter");

@@ -9,12 +9,12 @@
 //    "film_width": 64, "film_height": 64, "crop": [0, 0, 64, 64],
 //    "time_filter": "box",
 //    "passes": 12, "spp_per_pass": 4, "spp": 48, "seed": 0,
-//    "time_limit_seconds": 30, "time_clock": "wall", "time_limit_reached": true,
-//    "render_seconds": 29.4, "render_cpu_seconds": 57.9}
+//    "time_limit_seconds": 30, "time_clock": "wall", "time_limit_reached": true}
 //
 // The last two lines say how the volume was rendered (absent from older
 // sidecars): the passes reached, so that `femto render --passes 12 --spp 4
-// --seed 0` renders the same bits without a time limit.
+// --seed 0` renders the same bits without a time limit. No times: the files
+// of a render depend on its seed and passes only (MPI ranks, threads).
 //
 // Tools that read volumes (femto compare, the viewers) use it to refuse
 // volumes of different windows and to label time axes; a volume without one
@@ -36,7 +36,6 @@ struct RenderRecord {
   double timeLimit = 0.0;  // seconds; 0: none
   std::string timeClock;   // "wall" / "cpu" (with a time limit)
   bool timeLimitReached = false;
-  double seconds = 0.0, cpuSeconds = 0.0;
 };
 
 struct VolumeInfo {

@@ -293,8 +293,8 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
                                      return block.put(pos, sampleFn(pos, sampler));
                                    },
                                    result, &progress));
+    if (!stats.completed) break;  // a cancelled pass is partial: not counted
     ++stats.passes;
-    if (!stats.completed) break;
   }
   stats.timeLimitReached = schedule.limitReached();
   stats.cpuSeconds = clockSeconds(RenderClock::Cpu) - cpuStart;

@@ -46,7 +46,7 @@ struct RenderStats {
   uint64_t invalidSamples = 0;  // NaN/Inf/negative values refused by the film (reported, never added)
   double seconds = 0.0;
   double cpuSeconds = 0.0;  // process CPU time (all threads) while the passes rendered; 0 where not measured
-  int passes = 0;           // passes rendered (RenderOptions::passes); 0 for integrators that do not render in passes
+  int passes = 0;           // whole passes rendered (RenderOptions::passes; a cancelled one is not counted)
   bool timeLimitReached = false;  // a time limit, not the pass count, ended the render
 };
 

@@ -22,36 +22,40 @@ void reportUnusedDefines(const ExpandResult& expanded, const XmlNode& root, cons
   }
 }
 
-/// --integrator FILE, before expansion: an <include> of it after the scene's
-/// own elements (so it sees the scene's $names).
+/// Marks where the --integrator file's elements start in the expanded root.
+constexpr const char* IntegratorFileMark = "femto:integrator-file";
+
+/// --integrator FILE, before expansion: a mark and an <include> of the file
+/// after the scene's own elements (so it sees the scene's $names).
 fs::path includeIntegratorFile(XmlNode& root, const fs::path& file) {
   std::error_code ec;
   fs::path absolute = fs::absolute(file, ec);
   if (ec || !fs::is_regular_file(absolute)) throw Error(str("--integrator: no such file \"", file.string(), "\""));
-  XmlNode include;
+  XmlNode mark, include;
+  mark.tag = IntegratorFileMark;
   include.tag = "include";
   include.attributes.emplace_back("filename", absolute.string());
-  include.location = root.location;
-  include.source = root.source;
-  include.dialect = root.dialect;
+  for (XmlNode* node : {&mark, &include}) {
+    node->location = root.location;
+    node->source = root.source;
+    node->dialect = root.dialect;
+  }
+  root.children.push_back(std::move(mark));
   root.children.push_back(std::move(include));
   return absolute;
 }
 
-/// After expansion: the root's <integrator> elements from other files than
-/// the --integrator file go (the scene's own, wherever it was included from).
+/// After expansion: the root's <integrator> elements before the mark (the
+/// scene's own, wherever they were included from; the file may be one the
+/// scene includes too) go, and the mark.
 void keepIntegratorOf(XmlNode& root, const fs::path& file) {
-  auto fromFile = [&](const XmlNode& node) {
-    std::error_code ec;
-    return node.source && fs::equivalent(node.source->file, file, ec);
-  };
-  bool found = false;
+  bool fromFile = false, found = false;
   std::vector<XmlNode> kept;
   for (XmlNode& child : root.children) {
-    if (child.tag != "integrator") {
-      kept.push_back(std::move(child));
-    } else if (fromFile(child)) {
-      found = true;
+    if (child.tag == IntegratorFileMark) {
+      fromFile = true;
+    } else if (child.tag != "integrator" || fromFile) {
+      found = found || (fromFile && child.tag == "integrator");
       kept.push_back(std::move(child));
     }
   }
