@@ -18,8 +18,10 @@
 #include <optional>
 #include <thread>
 
+#include <femto/core/duration.h>
 #include <femto/render/film.h>
 #include <femto/render/integrator.h>
+#include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
 
@@ -52,12 +54,15 @@ py::object progressObject(const ProgressState& s) {
 }
 
 py::dict render(const std::shared_ptr<Scene>& scene, const std::filesystem::path& output, uint64_t seed, int threads,
-                const py::object& progress) {
+                const py::object& progress, int passes, double timeLimit, const std::string& timeClock) {
   scene->sensor().film().checkOutputPath(output);
   RenderOptions options;
   options.output = output;
   options.seed = seed;
   options.threads = threads;
+  options.passes = passes;
+  options.timeLimit = timeLimit;
+  options.timeClock = timeClock == "cpu" ? RenderClock::Cpu : RenderClock::Wall;
   // The terminal bar only when nobody else shows progress (it draws on a TTY only, as in the CLI).
   options.progress = progress.is_none();
   std::atomic<bool> cancel{false};
@@ -115,6 +120,10 @@ py::dict render(const std::shared_ptr<Scene>& scene, const std::filesystem::path
   d["samples"] = stats.samples;
   d["invalid_samples"] = stats.invalidSamples;
   d["seconds"] = stats.seconds;
+  d["cpu_seconds"] = stats.cpuSeconds;
+  d["passes"] = stats.passes;
+  d["spp_per_pass"] = scene->sensor().sampler().sampleCount();
+  d["time_limit_reached"] = stats.timeLimitReached;
   d["stopped_by"] = stoppedBy;
   return d;
 }
@@ -123,9 +132,10 @@ py::dict render(const std::shared_ptr<Scene>& scene, const std::filesystem::path
 
 void bindRender(py::module_& m) {
   m.def("render", &render, py::arg("scene"), py::arg("output"), py::arg("seed"), py::arg("threads"),
-        py::arg("progress"),
+        py::arg("progress"), py::arg("passes") = 0, py::arg("time_limit") = 0.0, py::arg("time_clock") = "wall",
         "Render `scene` to `output` (the files `femto render -o output` writes); returns the render's statistics "
         "and the Python exception (KeyboardInterrupt, or one the progress callback raised) that stopped it, if any");
+  m.def("parse_duration", &parseDuration, py::arg("text"), "Seconds in \"30s\", \"5m\", \"1.5h\" or \"90\" (femto render --time-limit)");
 }
 
 }  // namespace femto::python

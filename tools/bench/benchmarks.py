@@ -36,7 +36,7 @@ SECTIONS = [
     ("path-sampling-heterogeneous", "tools/bench/path_sampling_bench.py --seeds 3 --only c"),
     ("path-peer", "tools/compare/tof_peer_path.py --only 1"),
     ("path-peer-protocols", "tools/compare/tof_peer_path.py --only 2"),
-    ("fog-box-speed-vs-error", "tools/compare/fog_box_benchmark.sh"),
+    ("fog-box-speed-vs-error", "tools/bench/fog_box_benchmark.sh"),
     ("media-suite", "tools/bench/run_media_suite.sh"),
     ("fog-box-beams", "tools/bench/fog_box_beams.py --resolution 64 --seeds 2 --repeats 3"),
     ("beams-pass-split", "tools/bench/beams_pass_split.py --resolution 64 --seeds 2"),

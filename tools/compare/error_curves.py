@@ -117,3 +117,71 @@ def convergence_slope(points):
     if sxx == 0:
         return None
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+
+
+def error_at(points, seconds, slack=1.0):
+    """(error, extrapolated) of the curve at `seconds`: log-log interpolation
+    inside its measured time range; outside it, the Monte Carlo rate from the
+    nearest end (error ~ 1/time: e_end * t_end / seconds), flagged
+    extrapolated when `seconds` lies more than a factor `slack` outside the
+    range (a render that stopped at 0.399 s of a 0.4 s budget is not worth a
+    flag). (None, False) for a curve with no positive point."""
+    pts = _positive(points)
+    if not pts:
+        return None, False
+    if seconds < pts[0][0]:
+        return pts[0][1] * pts[0][0] / seconds, seconds * slack < pts[0][0]
+    if seconds > pts[-1][0]:
+        return pts[-1][1] * pts[-1][0] / seconds, seconds > pts[-1][0] * slack
+    return error_at_time(pts, seconds), False
+
+
+def efficiency_ratio(baseline, other, seconds, slack=1.0):
+    """(ratio, extrapolated): error(baseline) / error(other) at equal time
+    `seconds`, i.e. how many times more efficient `other` is (relMSE x time is
+    constant along a slope -1 curve, so this is also the ratio of relMSE x
+    time). Either curve may be extrapolated (error_at): then the flag is set.
+    (None, False) when a curve has no positive point."""
+    b, bx = error_at(baseline, seconds, slack)
+    o, ox = error_at(other, seconds, slack)
+    if b is None or o is None:
+        return None, False
+    return b / o, bx or ox
+
+
+def shared_error_target(curves):
+    """An error inside every curve's measured error range (the geometric mean
+    of the overlap [largest of the smallest errors, smallest of the largest]),
+    so that every time to reach it is interpolated, never a bound; None when
+    the ranges do not overlap."""
+    ranges = [(min(e for _, e in _positive(p)), max(e for _, e in _positive(p))) for p in curves.values()
+              if _positive(p)]
+    if len(ranges) < len(curves) or not ranges:
+        return None
+    low, high = max(r[0] for r in ranges), min(r[1] for r in ranges)
+    return math.sqrt(low * high) if low <= high else None
+
+
+def split_bins_by_share(energy, k):
+    """K consecutive bands of bins [(first, end), ...] where band j holds the
+    bins whose light arrives once j/K and before (j+1)/K of the total has
+    (cumulative share at the bin's end). Every band holds at least one bin."""
+    total = sum(energy)
+    n = len(energy)
+    if k < 1 or n < k:
+        raise SpecError(f"cannot split {n} time bins into {k} bands")
+    ends, acc = [], 0.0
+    for b, e in enumerate(energy):
+        acc += e
+        # Bin b closes band len(ends) once the light up to it reaches the band's share.
+        while len(ends) < k - 1 and total > 0 and acc >= total * (len(ends) + 1) / k:
+            ends.append(b + 1)
+    while len(ends) < k - 1:
+        ends.append(n)
+    edges = [0] + ends + [n]
+    # At least one bin per band, in order.
+    for j in range(1, k + 1):
+        edges[j] = max(edges[j], edges[j - 1] + 1)
+    for j in range(k - 1, 0, -1):
+        edges[j] = min(edges[j], edges[j + 1] - 1)
+    return [(edges[j], edges[j + 1]) for j in range(k)]

@@ -63,7 +63,8 @@ def _load_volumes(paths):
     return volumes
 
 
-def mean_and_error(paths, out_path=None, epsilon=EPSILON, factors=(1,), rebin_factor=1, chunk_bytes=CHUNK_BYTES):
+def mean_and_error(paths, out_path=None, epsilon=EPSILON, factors=(1,), rebin_factor=1, chunk_bytes=CHUNK_BYTES,
+                   per_bin=False):
     """Mean of the .npy volumes `paths` (K >= 2 renders of one scene with
     different seeds), written to `out_path` as float32 if given, and the
     reference's expected relMSE contribution mean_v var_mean_v / (mean_v^2 + eps)
@@ -71,7 +72,8 @@ def mean_and_error(paths, out_path=None, epsilon=EPSILON, factors=(1,), rebin_fa
     its number of bins: its time integral, femto compare's "time_integral").
     With `rebin_factor` > 1 each render's bins are first summed in runs of
     that many (renders on a finer time grid give a coarser reference).
-    Returns {factor: contribution}. Streams a block of rows at a time."""
+    Returns {factor: contribution}, with per_bin also "per_bin": the
+    contribution of each bin of the mean (a list). Streams a block of rows at a time."""
     if len(paths) < 2:
         raise ValueError("the variance of a mean needs at least 2 renders")
     volumes = _load_volumes(paths)
@@ -84,6 +86,7 @@ def mean_and_error(paths, out_path=None, epsilon=EPSILON, factors=(1,), rebin_fa
     if out_path:
         out = np.lib.format.open_memmap(out_path, mode="w+", dtype=np.float32, shape=(height, width, bins, channels))
     sums = {f: 0.0 for f in factors}
+    bin_sums = np.zeros(bins)
     rows = max(1, chunk_bytes // (k * width * fine_bins * channels * 8))
     for y0 in range(0, height, rows):
         block = np.stack([rebin(np.asarray(v[y0:y0 + rows], dtype=np.float64), rebin_factor)
@@ -96,11 +99,17 @@ def mean_and_error(paths, out_path=None, epsilon=EPSILON, factors=(1,), rebin_fa
             m = samples.mean(axis=0)
             # Unbiased sample variance (ddof=1) divided by K: the variance of the mean.
             var_mean = samples.var(axis=0, ddof=1) / k
-            sums[f] += float(np.sum(var_mean / (m * m + epsilon)))
+            share = var_mean / (m * m + epsilon)
+            sums[f] += float(np.sum(share))
+            if f == 1:
+                bin_sums += share.sum(axis=(0, 1, 3))
     if out is not None:
         out.flush()
         del out
-    return {f: sums[f] / (height * width * (bins // f) * channels) for f in factors}
+    result = {f: sums[f] / (height * width * (bins // f) * channels) for f in factors}
+    if per_bin:
+        result["per_bin"] = (bin_sums / (height * width * channels)).tolist()
+    return result
 
 
 def _mean_key(scene, defines, integrator, param, budget, seeds, rebin_factor):

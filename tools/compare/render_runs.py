@@ -46,11 +46,12 @@ def result_file(output):
 # A render's times and the file to compare. seconds: the render as femto
 # reports it (RenderStats::seconds: no scene loading or output writing);
 # wall_seconds and cpu_seconds (user + system): the whole femto process.
-RenderResult = collections.namedtuple("RenderResult", "seconds wall_seconds cpu_seconds file")
+# stdout: what femto printed (the summary lines).
+RenderResult = collections.namedtuple("RenderResult", "seconds wall_seconds cpu_seconds file stdout", defaults=("",))
 
 
-def render(femto, scene, output, defines, seed, threads):
-    """Render; returns a RenderResult. The EXR frames are deleted: the
+def render(femto, scene, output, defines, seed, threads, extra=()):
+    """Render; returns a RenderResult (`extra`: more femto render arguments). The EXR frames are deleted: the
     harness compares the volume, and they would fill the disk (the fog
     benchmark passes -D frames=false, so that writing them is not timed)."""
     cmd = [femto, "render", scene, "-o", output, "--seed", str(seed), "--no-progress"]
@@ -58,13 +59,14 @@ def render(femto, scene, output, defines, seed, threads):
         cmd += ["-t", str(threads)]
     for name, value in defines:
         cmd += ["-D", f"{name}={value}"]
+    cmd += list(extra)
     out, wall, cpu = _run(cmd)
     m = SUMMARY.search(out)
     if not m:
         raise RunError(f"`{' '.join(cmd)}` printed no 'rendered ... in N s' line:\n{out}")
     stem, _ = os.path.splitext(output)
     shutil.rmtree(stem + "_frames", ignore_errors=True)
-    return RenderResult(float(m.group(2)), wall, cpu, result_file(output))
+    return RenderResult(float(m.group(2)), wall, cpu, result_file(output), out)
 
 
 def compare(femto, reference, test):

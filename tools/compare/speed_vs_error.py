@@ -201,31 +201,38 @@ def summarize_metric(rows, args, metric):
     lines = []
     if any(e <= 0 for pts in curves.values() for _, e in pts):
         lines.append("(values <= 0, i.e. within the reference's error estimate, are left out)")
-    target = args.target or ec.common_target(curves)
+    # A relMSE inside every curve's measured range: each time to reach it is
+    # interpolated, never a bound (a curve already below it at its cheapest
+    # budget would read "<= t", which says nothing about who is faster).
+    target = args.target or ec.shared_error_target(curves)
     if target:
         lines.append(f"time to reach relMSE {target:.4g}:")
         for name, pts in curves.items():
             t = ec.time_to_reach(pts, target)
-            # Reached already at the smallest budget: only an upper bound is known.
-            first = t is not None and t == min(s for s, _ in pts)
-            lines.append(f"  {name}: " + ("not reached" if t is None else f"{'<= ' if first else ''}{t:.3g} s"))
+            first = t is not None and t == min(s for s, _ in pts) and min(e for _, e in pts) < target
+            lines.append(f"  {name}: " + ("not reached" if t is None else
+                                          (f"below it already at its cheapest budget, {t:.3g} s" if first
+                                           else f"{t:.3g} s")))
+    else:
+        lines.append("time to reach: no relMSE lies in every curve's measured range (left out)")
     for name, pts in curves.items():
         slope = ec.convergence_slope(pts)
         if slope is not None:
             lines.append(f"convergence slope of {name}: relMSE ~ time^{slope:.2f} (Monte Carlo: -1)")
     names = list(curves)
     span = ec.common_time_range(curves)
-    if len(names) > 1 and span:
-        # At both ends of the common range: at the latest time the reference's
-        # own noise (added to every measured error) compresses ratios most.
-        for when in sorted(set(span), reverse=True):
-            ratios = ec.equal_time_ratios(curves, names[0], when)
+    if len(names) > 1:
+        # At both ends of the common range (at the latest time the reference's
+        # own noise, added to every measured error, compresses ratios most);
+        # without one, at the first curve's latest time, the others
+        # extrapolated with the Monte Carlo slope -1.
+        times = sorted(set(span), reverse=True) if span else [max(t for t, _ in curves[names[0]])]
+        for when in times:
             lines.append(f"equal-time relMSE ratio at {when:.3g} s (vs {names[0]}):")
             for name in names[1:]:
-                r = ratios[name]
-                lines.append(f"  {name} / {names[0]}: " + (f"{r:.3g}" if r is not None else "n/a"))
-    elif len(names) > 1:
-        lines.append("equal-time ratio: the curves share no time range")
+                r, extrapolated = ec.efficiency_ratio(curves[name], curves[names[0]], when)
+                lines.append(f"  {name} / {names[0]}: " + (f"{r:.3g}" if r is not None else "n/a")
+                             + (" (extrapolated with slope -1 beyond a curve's time range)" if extrapolated else ""))
     return lines
 
 

@@ -53,6 +53,56 @@ class ErrorCurves(unittest.TestCase):
         self.assertIsNone(ec.common_time_range({"a": [(1.0, 1.0), (2.0, 0.5)], "b": [(3.0, 1.0), (4.0, 0.5)]}))
         self.assertEqual(ec.common_time_range({"a": [(1.0, 1.0), (5.0, 0.5)], "b": [(2.0, 1.0), (4.0, 0.5)]}), (2.0, 4.0))
 
+    def test_efficiency_ratio_interpolates_where_curves_overlap(self):
+        # FAST reaches MC's error in half the time: 2x as efficient at every shared time.
+        for t in (1.0, 1.5, 3.0, 4.0):
+            ratio, extrapolated = ec.efficiency_ratio(MC, FAST, t)
+            self.assertAlmostEqual(ratio, 2.0)
+            self.assertFalse(extrapolated)
+        # Budgets that differ per curve: error = 3 / t^2 measured at 1 and 3, error = 1 / t at 2 and 4;
+        # at t = 2 the first interpolates to 3/4 exactly on its log-log line, the second is measured: 0.75 / 0.5.
+        steep, mc = [(1.0, 3.0), (3.0, 1.0 / 3.0)], [(2.0, 0.5), (4.0, 0.25)]
+        ratio, extrapolated = ec.efficiency_ratio(steep, mc, 2.0)
+        self.assertAlmostEqual(ratio, 1.5)
+        self.assertFalse(extrapolated)
+
+    def test_efficiency_ratio_extrapolates_with_slope_minus_one(self):
+        # Disjoint CPU ranges (what printed "no shared range"): a = 1/t on [1, 2],
+        # b = 0.25/t on [4, 8]; at t = 2, b extrapolates to 0.0625 * 4 / 2 = 0.125: ratio 4, flagged.
+        a, b = [(1.0, 1.0), (2.0, 0.5)], [(4.0, 0.0625), (8.0, 0.03125)]
+        ratio, extrapolated = ec.efficiency_ratio(a, b, 2.0)
+        self.assertAlmostEqual(ratio, 4.0)
+        self.assertTrue(extrapolated)
+        # Beyond both: each from its own last point, still 4 for two slope -1 curves.
+        ratio, extrapolated = ec.efficiency_ratio(a, b, 100.0)
+        self.assertAlmostEqual(ratio, 4.0)
+        self.assertTrue(extrapolated)
+        # Below the first point: a curve of slope -2 extrapolated with -1 from its first point.
+        value, extrapolated = ec.error_at([(2.0, 0.25), (4.0, 0.0625)], 1.0)
+        self.assertAlmostEqual(value, 0.5)
+        self.assertTrue(extrapolated)
+        self.assertEqual(ec.efficiency_ratio([], b, 1.0), (None, False))
+        # Within the slack (a render that stopped just short of its budget): the same value, not flagged.
+        self.assertEqual(ec.error_at(a, 2.05, slack=1.05), (0.5 * 2.0 / 2.05, False))
+        self.assertTrue(ec.error_at(a, 2.2, slack=1.05)[1])
+
+    def test_shared_error_target(self):
+        # Errors [0.125, 1] and [0.0625, 0.5] overlap on [0.125, 0.5]: the geometric middle 0.25,
+        # which both curves reach inside their measured range (no "<=" bounds).
+        curves = {"mc": MC, "b": [(4.0, 0.5), (8.0, 0.0625)]}
+        self.assertAlmostEqual(ec.shared_error_target(curves), 0.25)
+        self.assertAlmostEqual(ec.time_to_reach(MC, 0.25), 4.0)
+        self.assertIsNone(ec.shared_error_target({"a": [(1.0, 1.0), (2.0, 0.5)], "b": [(1.0, 0.1), (2.0, 0.05)]}))
+
+    def test_split_bins_by_share(self):
+        # Half the light in the first two bins: early = bins 0:2, late = 2:6.
+        self.assertEqual(ec.split_bins_by_share([1, 1, 0.5, 0.5, 0.5, 0.5], 2), [(0, 2), (2, 6)])
+        self.assertEqual(ec.split_bins_by_share([1, 1, 1, 1], 4), [(0, 1), (1, 2), (2, 3), (3, 4)])
+        # All the light in bin 0: the bands still hold one bin or more each, in order.
+        self.assertEqual(ec.split_bins_by_share([1, 0, 0, 0], 3), [(0, 1), (1, 2), (2, 4)])
+        with self.assertRaises(ec.SpecError):
+            ec.split_bins_by_share([1], 2)
+
     def test_convergence_slope(self):
         self.assertAlmostEqual(ec.convergence_slope(MC), -1.0)
         self.assertAlmostEqual(ec.convergence_slope([(1.0, 1.0), (4.0, 0.5)]), -0.5)

@@ -13,6 +13,10 @@ using Command = std::function<int()>;
 Command addRenderCommand(CLI::App& app);
 Command addPluginsCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
+/// `femto compare SCENE.xml ...` (integrators on a scene, run by a Python
+/// engine): is this that form, and run it (replaces the process when it can).
+bool isSceneComparison(int argc, char** argv);
+int runSceneComparison(int argc, char** argv);
 // Looking at transient volumes (docs/viewing.md).
 Command addFramesCommand(CLI::App& app);
 Command addStreakCommand(CLI::App& app);

@@ -67,6 +67,9 @@ Command addCompareCommand(CLI::App& app) {
   command->add_option("--epsilon", o->epsilon, "relMSE's epsilon: mean (t-r)^2 / (r^2 + epsilon)")
       ->type_name("E")
       ->capture_default_str();
+  command->footer(
+      "Integrators on a scene at equal CPU budgets: femto compare SCENE.xml -i NAME -i NAME [...] "
+      "(a first argument ending in .xml; `femto compare SCENE.xml --help` for its options, docs/compare.md)");
   return [o] { return compare(*o); };
 }
 

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   femto::cli::Command profile = femto::cli::addProfileCommand(app);
   femto::cli::Command view = femto::cli::addViewCommand(app);
 
+  if (femto::cli::isSceneComparison(argc, argv)) return femto::cli::runSceneComparison(argc, argv);
   if (std::string message = unknownCommand(argc, argv, app); !message.empty()) {
     std::cerr << message;
     return 2;

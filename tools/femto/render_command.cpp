@@ -12,10 +12,13 @@
 #include <tbb/global_control.h>
 
 #include <femto/base/error.h>
+#include <femto/core/duration.h>
 #include <femto/core/log.h>
 #include <femto/core/resources.h>
 #include <femto/render/integrator.h>
+#include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/render/sensor.h>
 #include <femto/xml/loader.h>
 
 #include "arguments.h"
@@ -36,7 +39,11 @@ struct RenderSettings {
   int threads = 0;
   uint64_t seed = 0;
   int sampleCount = 0;  // 0: the scene's
+  int passes = 0;       // 0: the integrator's
+  std::string timeLimit;   // "30s", "5m", "90": empty for none
+  std::string timeClock = "wall";
   std::string resolution;
+  std::string integratorFile;  // --integrator: empty for the scene's
   bool strict = false;
   bool noProgress = false;
   std::vector<std::string> pluginDirs;
@@ -65,14 +72,39 @@ LoadOptions loadOptions(const RenderSettings& settings) {
   options.strict = settings.strict;
   if (!settings.resolution.empty()) options.resolution = parseResolution(settings.resolution);
   if (settings.sampleCount > 0) options.sampleCount = settings.sampleCount;
+  if (!settings.integratorFile.empty()) options.integratorFile = settings.integratorFile;
   return options;
 }
 
+/// --time-limit and --time-clock into the render's options.
+void applyTimeLimit(const RenderSettings& settings, RenderOptions& options) {
+  options.passes = settings.passes;
+  if (settings.timeLimit.empty()) return;
+  try {
+    options.timeLimit = parseDuration(settings.timeLimit);
+  } catch (const Error& e) {
+    throw UsageError(str("--time-limit: ", e.what()));
+  }
+  options.timeClock = settings.timeClock == "cpu" ? RenderClock::Cpu : RenderClock::Wall;
+}
+
 /// `seconds`: wall time of the whole job (every pass and every file written),
-/// not only of the tile loops that stats.seconds sums.
-void printSummary(const fs::path& output, const RenderStats& stats, double seconds, bool interrupted) {
+/// not only of the tile loops that stats.seconds sums. A render in passes
+/// says how many, and under a time limit the command that renders the same
+/// bits without one (scripts read both lines: tools/compare/render_runs.py).
+void printSummary(const fs::path& output, const RenderStats& stats, double seconds, bool interrupted,
+                  const RenderSettings& settings, int samplesPerPass) {
   std::cout << std::fixed << std::setprecision(3) << (stats.completed ? "rendered " : "stopped early, partial image ") << output.string() << " in "
             << seconds << " s (" << stats.samples << " samples)\n";
+  if (stats.passes > 0 && (stats.passes > 1 || settings.passes > 0 || !settings.timeLimit.empty())) {
+    std::cout << stats.passes << " passes of " << samplesPerPass << " spp (" << uint64_t(stats.passes) * uint64_t(samplesPerPass)
+              << " spp), rendering " << stats.seconds << " s, " << stats.cpuSeconds << " s CPU";
+    if (!settings.timeLimit.empty())
+      std::cout << "; time limit " << settings.timeLimit << " (" << settings.timeClock << " clock) "
+                << (stats.timeLimitReached ? "reached" : "not reached") << "; the same image without it: --passes "
+                << stats.passes << " --spp " << samplesPerPass << " --seed " << settings.seed;
+    std::cout << '\n';
+  }
   if (stats.invalidSamples > 0)
     logWarn(stats.invalidSamples, " of ", stats.samples,
             " samples were NaN, infinite or negative and were left out of the image: the integrator has a bug");
@@ -86,6 +118,7 @@ int renderHere(const RenderSettings& settings, const RenderProcesses& processes)
   RenderOptions options;
   options.threads = settings.threads;
   options.seed = settings.seed;
+  applyTimeLimit(settings, options);
   options.output = outputPath(settings);
   // Under mpirun only rank 0 writes and draws; the others render tiles for it.
   options.progress = !settings.noProgress && processes.writes();
@@ -105,7 +138,8 @@ int renderHere(const RenderSettings& settings, const RenderProcesses& processes)
   RenderStats stats = scene->integrator().render(*scene, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!processes.writes()) return 0;
-  printSummary(output, stats, seconds, interrupt.interrupted());
+  printSummary(output, stats, seconds, interrupt.interrupted(), settings,
+               int(scene->sensor().sampler().sampleCount()));
   // 128 + SIGINT tells scripts the image is partial.
   return interrupt.interrupted() ? 130 : 0;
 }
@@ -113,6 +147,15 @@ int renderHere(const RenderSettings& settings, const RenderProcesses& processes)
 int render(const RenderSettings& settings) {
   RenderProcesses processes;
   if (processes.count() == 1) return renderHere(settings, processes);
+  // The ranks would have to agree, pass by pass, on the time left: a pass
+  // count gives the same bits on any number of ranks instead.
+  if (!settings.timeLimit.empty()) {
+    if (processes.writes())
+      std::cerr << "error: --time-limit is not supported under mpirun (" << processes.count()
+                << " ranks): give the number of passes instead (--passes N; a time-limited render on one process "
+                   "prints the count it reached)\n";
+    return 2;
+  }
   // One rank failing leaves the others waiting for it: end them all.
   try {
     return renderHere(settings, processes);
@@ -133,8 +176,22 @@ Command addRenderCommand(CLI::App& app) {
       ->allow_extra_args(false);
   addCountOption(*command, "-t,--threads", s->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", s->seed, "Base random seed; the image depends only on scene and seed")->type_name("N");
-  addCountOption(*command, "--spp", s->sampleCount, "Samples per pixel (overrides the scene's sampler)");
+  addCountOption(*command, "--spp", s->sampleCount, "Samples per pixel (overrides the scene's sampler); per pass with --passes or --time-limit");
+  addCountOption(*command, "--passes", s->passes,
+                 "Render N passes of the sampler's spp with their own seeds and average them (default: the integrator's; "
+                 "with --time-limit: the most)");
+  command->add_option("--time-limit", s->timeLimit,
+                      "Render whole passes until the next would pass this time (30s, 5m, 90 = seconds); the output "
+                      "and its sidecar say how many")
+      ->type_name("DURATION");
+  command->add_option("--time-clock", s->timeClock, "Clock of --time-limit: wall (default) or cpu (all threads' CPU time)")
+      ->check(CLI::IsMember({"wall", "cpu"}))
+      ->type_name("wall|cpu");
   command->add_option("--resolution", s->resolution, "Film size (overrides the scene's film)")->type_name("WxH");
+  command->add_option("--integrator", s->integratorFile,
+                      "Render with the <integrator> of this XML file instead of the scene's")
+      ->type_name("FILE.xml")
+      ->check(CLI::ExistingFile);
   command->add_flag("--strict", s->strict, "Treat unused scene parameters as errors");
   command->add_flag("--no-progress", s->noProgress, "Do not draw the progress bar");
   s->applyPluginDirs = addPluginDirOption(*command, s->pluginDirs);

@@ -58,6 +58,10 @@ class RenderResult:
     invalid_samples: int
     seconds: float
     files: dict                          # the files written, when render(output=...) kept them; else {}
+    cpu_seconds: float = 0.0             # the process's CPU time (all threads) while the passes rendered
+    passes: int = 0                      # passes rendered (of spp_per_pass samples per pixel each)
+    spp_per_pass: int = 0
+    time_limit_reached: bool = False     # render(time_limit=...) ended the passes
 
     @property
     def memory_mapped(self) -> bool:

@@ -50,11 +50,18 @@ class Scene:
     def __repr__(self):
         return repr(self._native(self._default_spp))
 
-    def render(self, spp=None, seed=0, threads=None, progress=None, output=None, memory_limit=None, tmp_dir=None):
+    def render(self, spp=None, seed=0, threads=None, progress=None, output=None, memory_limit=None, tmp_dir=None,
+               passes=None, time_limit=None, time_clock="wall"):
         """Render with the scene's integrator, as `femto render` does.
 
-        spp: samples per pixel (None: the scene's). seed: the base seed (the
-        arrays depend only on scene, spp and seed, not on threads). threads:
+        spp: samples per pixel (None: the scene's), per pass. seed: the base
+        seed (the arrays depend only on scene, spp, passes and seed, not on
+        threads). passes: independent passes of spp samples averaged (None:
+        the integrator's own, --passes). time_limit: seconds, or a duration
+        text as --time-limit takes ("30s", "5m"): whole passes until the next
+        would pass it, at most `passes`; result.passes says how many, and
+        render(spp, passes=result.passes, seed) gives the same bits.
+        time_clock: "wall" (default) or "cpu" (all threads' CPU time). threads:
         worker threads (None: all cores). progress: called with a Progress as
         the CLI's bar is redrawn. output: keep the files `femto render -o
         output` writes there (None: render into a temporary folder, removed
@@ -72,6 +79,11 @@ class Scene:
             raise ValueError(f"spp must be a whole number >= 1, got {spp}")
         if seed < 0:
             raise ValueError(f"seed must be >= 0, got {seed}")
+        if passes is not None and int(passes) < 1:
+            raise ValueError(f"passes must be a whole number >= 1, got {passes}")
+        if time_clock not in ("wall", "cpu"):
+            raise ValueError(f"time_clock must be 'wall' or 'cpu', got {time_clock!r}")
+        limit_seconds = _seconds(time_limit)
         native = self._native(None if spp is None else int(spp))
         limit = DEFAULT_MEMORY_LIMIT if memory_limit is None else int(memory_limit)
         temporary = None
@@ -81,7 +93,8 @@ class Scene:
         output = Path(output)
         callback = None if progress is None else (lambda state: progress(Progress(**state)))
         try:
-            stats = _femto.render(native, output, int(seed), 0 if threads is None else int(threads), callback)
+            stats = _femto.render(native, output, int(seed), 0 if threads is None else int(threads), callback,
+                                  0 if passes is None else int(passes), limit_seconds, time_clock)
             result = _collect(native, output, stats, limit, temporary)
         except BaseException:
             if temporary:
@@ -92,6 +105,21 @@ class Scene:
             stopped_by.result = result
             raise stopped_by
         return result
+
+
+def _seconds(time_limit):
+    """render(time_limit=...) in seconds: None -> 0 (no limit), a number, or "30s" / "5m" (--time-limit's parser)."""
+    if time_limit is None:
+        return 0.0
+    if isinstance(time_limit, str):
+        try:
+            return _femto.parse_duration(time_limit)
+        except Exception as e:  # femto's Error: a message, not a scene error
+            raise ValueError(f"time_limit: {e}") from None
+    seconds = float(time_limit)
+    if not seconds > 0 or seconds == float("inf"):
+        raise ValueError(f"time_limit must be a number of seconds > 0, got {time_limit}")
+    return seconds
 
 
 def _read_optional_image(path):
@@ -132,7 +160,9 @@ def _collect(native, output, stats, limit, temporary):
         files = {k: Path(v) for k, v in paths.items() if Path(v).exists()}
     return RenderResult(steady=steady, transient=transient, before=before, after=after, time_axis=time_axis,
                         completed=stats["completed"], samples=stats["samples"],
-                        invalid_samples=stats["invalid_samples"], seconds=stats["seconds"], files=files)
+                        invalid_samples=stats["invalid_samples"], seconds=stats["seconds"], files=files,
+                        cpu_seconds=stats["cpu_seconds"], passes=stats["passes"], spp_per_pass=stats["spp_per_pass"],
+                        time_limit_reached=stats["time_limit_reached"])
 
 
 def _split_options(defines, given):

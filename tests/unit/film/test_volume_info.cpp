@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include <femto/base/error.h>
 #include <femto/core/flat_json.h>
@@ -49,6 +50,34 @@ TEST(VolumeInfo, TransientRenderWritesTheWindowAndCropBesideTheVolume) {
   EXPECT_EQ(info->filmSize, Point2i(40, 30));
   EXPECT_EQ(info->cropOffset, Point2i(4, 3));
   EXPECT_EQ(info->timeFilter, "tent");
+  // How it was rendered: one pass of the sampler's one sample, no time limit.
+  ASSERT_TRUE(info->render.has_value());
+  EXPECT_EQ(info->render->passes, 1);
+  EXPECT_EQ(info->render->samplesPerPass, 1);
+  EXPECT_EQ(info->render->timeLimit, 0.0);
+  fs::remove_all(dir);
+}
+
+TEST(VolumeInfo, RenderRecordReadsBackAndOlderSidecarsHaveNone) {
+  fs::path dir = test::scratchDir("volume-info-record");
+  VolumeInfo info;
+  info.width = info.height = 2;
+  info.grid = TimeGrid{0.0, 1.0, 4};
+  writeVolumeInfo(dir / "old.json", info);
+  EXPECT_FALSE(readVolumeInfo(dir / "old.npy")->render.has_value());
+  info.render = RenderRecord{12, 4, 7, 30.0, "cpu", true};
+  writeVolumeInfo(dir / "new.json", info);
+  std::ifstream in(dir / "new.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("\"spp\": 48"), std::string::npos) << text;  // passes x spp_per_pass, for readers
+  std::optional<RenderRecord> back = readVolumeInfo(dir / "new.npy")->render;
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->passes, 12);
+  EXPECT_EQ(back->samplesPerPass, 4);
+  EXPECT_EQ(back->seed, 7u);
+  EXPECT_EQ(back->timeLimit, 30.0);
+  EXPECT_EQ(back->timeClock, "cpu");
+  EXPECT_TRUE(back->timeLimitReached);
   fs::remove_all(dir);
 }
 

@@ -127,6 +127,44 @@ TEST(LoaderExpand, IncludeWithoutVersionTakesTheIncludersDialect) {
   EXPECT_EQ(*p.root.children[0].children[0].attribute("name"), "specular_reflectance");
 }
 
+TEST(LoaderExpand, IntegratorFileReplacesTheScenesIntegratorWhereverItWasIncluded) {
+  // --integrator FILE: the scene's own integrator (here from an include, as in
+  // the fog box) goes; the file's stays, after the scene's elements, seeing
+  // the scene's $names; its <default> does not override the scene's.
+  auto dir = freshDir("integrator_file");
+  writeFile(dir / "main.xml",
+            "<scene version=\"3.0.0\">\n  <default name=\"depth\" value=\"5\"/>\n  <default name=\"spp\" value=\"64\"/>\n"
+            "  <include filename=\"integrator-path.xml\"/>\n  <bsdf type=\"diffuse\"/>\n</scene>\n");
+  writeFile(dir / "integrator-path.xml",
+            "<scene version=\"3.0.0\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"$depth\"/>"
+            "</integrator></scene>\n");
+  writeFile(dir / "mine.xml",
+            "<scene version=\"3.0.0\">\n  <default name=\"spp\" value=\"8\"/>\n"
+            "  <integrator type=\"direct\"><integer name=\"max_depth\" value=\"$depth\"/><integer name=\"n\" value=\"$spp\"/>"
+            "</integrator>\n</scene>\n");
+  LoadOptions options;
+  options.integratorFile = dir / "mine.xml";
+  auto p = parseFile(dir / "main.xml", options);
+  ASSERT_EQ(p.root.children.size(), 2u);
+  EXPECT_EQ(p.root.children[0].tag, "bsdf");
+  const XmlNode& integrator = p.root.children[1];
+  EXPECT_EQ(*integrator.attribute("type"), "direct");
+  EXPECT_EQ(*integrator.children[0].attribute("value"), "5");   // the scene's $depth
+  EXPECT_EQ(*integrator.children[1].attribute("value"), "64");  // the scene's spp, not the file's default
+  EXPECT_NE(integrator.location.toString().find("mine.xml:3"), std::string::npos) << integrator.location.toString();
+  // An <integrator> root works too; a file without one, or no file, is an error naming it.
+  writeFile(dir / "bare.xml", "<integrator type=\"direct\"/>\n");
+  options.integratorFile = dir / "bare.xml";
+  EXPECT_EQ(*parseFile(dir / "main.xml", options).root.children[1].attribute("type"), "direct");
+  writeFile(dir / "none.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>\n");
+  options.integratorFile = dir / "none.xml";
+  std::string message = loadertest::errorOf([&] { parseFile(dir / "main.xml", options); });
+  EXPECT_NE(message.find("none.xml\" holds no <integrator> element"), std::string::npos) << message;
+  options.integratorFile = dir / "missing.xml";
+  message = loadertest::errorOf([&] { parseFile(dir / "main.xml", options); });
+  EXPECT_NE(message.find("--integrator: no such file"), std::string::npos) << message;
+}
+
 TEST(LoaderExpand, MissingIncludeIsAnErrorAtItsLine) {
   auto dir = freshDir("include_missing");
   EXPECT_SCENE_ERROR(parse("<scene>\n  <include filename=\"nothere.xml\"/>\n</scene>", {}, dir), "test.xml:2",

@@ -67,7 +67,8 @@ void ProgressReporter::finish() {
 ProgressState ProgressReporter::state(uint64_t done, bool final) const {
   ProgressState s;
   s.label = label_;
-  s.fraction = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
+  const uint64_t total = total_.load();
+  s.fraction = total ? std::min(1.0, double(done) / double(total)) : 1.0;
   s.elapsedSeconds = elapsedSeconds();
   // Linear extrapolation of the time per unit of work done so far.
   if (s.fraction > 0 && !final) s.etaSeconds = s.elapsedSeconds * (1 - s.fraction) / s.fraction;

@@ -30,6 +30,9 @@ class ProgressReporter {
   ProgressReporter(std::string label, uint64_t total, bool enabled = true, ProgressCallback callback = {});
   ~ProgressReporter();
   void update(uint64_t delta);  // thread-safe
+  /// A new estimate of the whole job (a time-limited render learns its pass
+  /// count as it goes); call between updates, not during them.
+  void setTotal(uint64_t total) { total_ = total; }
   void finish();
   double elapsedSeconds() const;
 
@@ -37,7 +40,7 @@ class ProgressReporter {
   ProgressState state(uint64_t done, bool final) const;
   void draw(const ProgressState& state);
   std::string label_;
-  uint64_t total_;
+  std::atomic<uint64_t> total_;
   bool enabled_;
   ProgressCallback callback_;
   std::atomic<uint64_t> done_{0};

@@ -124,16 +124,17 @@ void TransientOutput::consume(TransientTile& tile, int pass) {
   }
 }
 
-VolumeInfo TransientOutput::volumeInfo() const {
+VolumeInfo TransientOutput::volumeInfo(const RenderRecord* record) const {
   VolumeInfo info;
   info.width = film_.cropSize().x, info.height = film_.cropSize().y;
   info.grid = film_.timeGrid();
   info.filmSize = film_.size(), info.cropOffset = film_.cropOffset();
   info.timeFilter = film_.timeFilter().name();
+  if (record) info.render = *record;
   return info;
 }
 
-void TransientOutput::finish(const std::function<void(int done, int total)>& onFrames) {
+void TransientOutput::finish(const std::function<void(int done, int total)>& onFrames, const RenderRecord* record) {
   if (!paths_) return;
   Film::writeExrWithPreview(paths_->steady, steady_);
   writeEXR(paths_->before, before_);
@@ -146,7 +147,7 @@ void TransientOutput::finish(const std::function<void(int done, int total)>& onF
     std::filesystem::rename(volumeTmp_, paths_->volume, ec);
     if (!ec) volumeTmpGuard_.reset();
     if (ec) throw Error(str("cannot write \"", paths_->volume.string(), "\": ", ec.message()));
-    writeVolumeInfo(volumeInfoPath(paths_->volume), volumeInfo());
+    writeVolumeInfo(volumeInfoPath(paths_->volume), volumeInfo(record));
   } else {
     std::filesystem::remove(volumeTmp_, ec);
   }

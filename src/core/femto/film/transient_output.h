@@ -36,7 +36,8 @@ class TransientOutput {
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
   /// `onFrames(done, total)` is called after each batch of frames written.
-  void finish(const std::function<void(int done, int total)>& onFrames = {});
+  /// `record`, when given, goes into the volume's sidecar (how it was rendered).
+  void finish(const std::function<void(int done, int total)>& onFrames = {}, const RenderRecord* record = nullptr);
   /// Does finish() write one frame per bin (the longest part of it)?
   bool writesFrames() const { return paths_ && volume_ && film_.writesFrames(); }
 
@@ -47,7 +48,7 @@ class TransientOutput {
 
  private:
   /// The volume's sidecar (<stem>.json: time window, crop; volume_info.h).
-  VolumeInfo volumeInfo() const;
+  VolumeInfo volumeInfo(const RenderRecord* record) const;
 
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;

@@ -14,9 +14,12 @@
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_output.h>
 #include <femto/film/transient_tile.h>
+#include <femto/loop/pass_schedule.h>
 #include <femto/loop/render_loop.h>
 #include <femto/render/emitter.h>
 #include <femto/render/scene.h>
+#include <femto/render/sensor.h>
+#include <femto/render/sampler.h>
 
 namespace femto {
 namespace {
@@ -35,14 +38,17 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
                             const TransientPassFunction& passIntegrator) {
   checkEmitterPulses(scene, film);
   TransientOutput output(film, options.output);
+  PassSchedule schedule(options, passes);
+  const double cpuStart = clockSeconds(RenderClock::Cpu);
   // One bar for the whole job: every pass, one unit per pixel, then the
   // frames, counted as one more pass (they read the whole volume back).
   const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
   const uint64_t frameUnits = output.writesFrames() ? pixels : 0;
-  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)) + frameUnits, options.progress,
+  ProgressReporter progress("Rendering", pixels * uint64_t(schedule.expectedPasses()) + frameUnits, options.progress,
                             options.onProgress);
   RenderStats stats;
-  for (int pass = 0; pass < passes; ++pass) {
+  for (int pass = 0; schedule.startPass(pass); ++pass) {
+    progress.setTotal(pixels * uint64_t(schedule.expectedPasses()) + frameUnits);
     std::shared_ptr<const TransientIntegrator> integrator =
         passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
     TransientRenderContext context{scene, *integrator, film.timeDeposit()};
@@ -54,21 +60,33 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     passOptions.seed = passSeed(options.seed, pass);
     accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
                                                 TransientTile::bytesPerPixel(film.timeGrid().bins), &progress));
-    if (!stats.completed) break;
+    if (!stats.completed) break;  // a cancelled pass is partial: not counted
+    ++stats.passes;
   }
+  stats.timeLimitReached = schedule.limitReached();
+  stats.cpuSeconds = clockSeconds(RenderClock::Cpu) - cpuStart;
+  // The frames' share of the bar follows the passes actually rendered.
+  const uint64_t passUnits = pixels * uint64_t(std::max(stats.passes, 1));
+  progress.setTotal(passUnits + frameUnits);
   uint64_t framesCounted = 0;
   auto onFrames = [&](int done, int total) {
     const uint64_t units = frameUnits * uint64_t(done) / uint64_t(std::max(total, 1));
     progress.update(units - framesCounted);
     framesCounted = units;
   };
+  RenderRecord record{stats.passes,
+                      int(scene.sensor().sampler().sampleCount()),
+                      options.seed,
+                      options.timeLimit,
+                      options.timeLimit > 0.0 ? clockName(options.timeClock) : "",
+                      stats.timeLimitReached};
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
-    auto finish = [&] { output.finish(onFrames); };
+    auto finish = [&] { output.finish(onFrames, &record); };
     executeInArena(arena, finish);
   } else
-    output.finish(onFrames);
+    output.finish(onFrames, &record);
   progress.finish();
   return stats;
 }

@@ -45,7 +45,15 @@ void writeVolumeInfo(const std::filesystem::path& path, const VolumeInfo& info) 
      << "  \"end_opl\": " << jsonNumber(info.grid.end()) << ",\n"
      << "  \"film_width\": " << info.filmSize.x << ",\n  \"film_height\": " << info.filmSize.y << ",\n"
      << "  \"crop\": [" << info.cropOffset.x << ", " << info.cropOffset.y << ", " << info.width << ", " << info.height
-     << "],\n  \"time_filter\": " << jsonQuote(info.timeFilter) << "\n}\n";
+     << "],\n  \"time_filter\": " << jsonQuote(info.timeFilter);
+  if (const auto& r = info.render) {
+    os << ",\n  \"passes\": " << r->passes << ",\n  \"spp_per_pass\": " << r->samplesPerPass
+       << ",\n  \"spp\": " << uint64_t(r->passes) * uint64_t(r->samplesPerPass) << ",\n  \"seed\": " << r->seed;
+    if (r->timeLimit > 0.0)
+      os << ",\n  \"time_limit_seconds\": " << jsonNumber(r->timeLimit) << ",\n  \"time_clock\": "
+         << jsonQuote(r->timeClock) << ",\n  \"time_limit_reached\": " << (r->timeLimitReached ? "true" : "false");
+  }
+  os << "\n}\n";
   std::string text = os.str();
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
@@ -77,6 +85,20 @@ std::optional<VolumeInfo> readVolumeInfo(const std::filesystem::path& volume) {
     const auto* c = std::get_if<std::vector<double>>(&crop->second);
     if (!c || c->size() != 4) throw Error(str("volume sidecar \"", path.string(), "\": \"crop\" must be [x, y, width, height]"));
     info.cropOffset = {int((*c)[0]), int((*c)[1])};
+  }
+  if (json.count("passes")) {
+    RenderRecord r;
+    r.passes = intField(json, "passes", path);
+    r.samplesPerPass = intField(json, "spp_per_pass", path);
+    r.seed = uint64_t(numberField(json, "seed", path));
+    if (json.count("time_limit_seconds")) {
+      r.timeLimit = numberField(json, "time_limit_seconds", path);
+      if (auto c = json.find("time_clock"); c != json.end())
+        if (const auto* text = std::get_if<std::string>(&c->second)) r.timeClock = *text;
+      if (auto b = json.find("time_limit_reached"); b != json.end())
+        if (const auto* reached = std::get_if<bool>(&b->second)) r.timeLimitReached = *reached;
+    }
+    info.render = r;
   }
   auto filter = json.find("time_filter");
   if (filter != json.end())

@@ -7,11 +7,19 @@
 //    "width": 64, "height": 64, "bins": 512,
 //    "time_unit": "opl", "start_opl": 3, "bin_width_opl": 0.02, "end_opl": 13.24,
 //    "film_width": 64, "film_height": 64, "crop": [0, 0, 64, 64],
-//    "time_filter": "box"}
+//    "time_filter": "box",
+//    "passes": 12, "spp_per_pass": 4, "spp": 48, "seed": 0,
+//    "time_limit_seconds": 30, "time_clock": "wall", "time_limit_reached": true}
+//
+// The last two lines say how the volume was rendered (absent from older
+// sidecars): the passes reached, so that `femto render --passes 12 --spp 4
+// --seed 0` renders the same bits without a time limit. No times: the files
+// of a render depend on its seed and passes only (MPI ranks, threads).
 //
 // Tools that read volumes (femto compare, the viewers) use it to refuse
 // volumes of different windows and to label time axes; a volume without one
 // (older renders, volumes made elsewhere) is still readable by shape alone.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -21,11 +29,21 @@
 
 namespace femto {
 
+/// How a volume was rendered (the render's pass count and budget).
+struct RenderRecord {
+  int passes = 0, samplesPerPass = 0;
+  uint64_t seed = 0;
+  double timeLimit = 0.0;  // seconds; 0: none
+  std::string timeClock;   // "wall" / "cpu" (with a time limit)
+  bool timeLimitReached = false;
+};
+
 struct VolumeInfo {
   int width = 0, height = 0;  // of the volume (the film's crop window)
   TimeGrid grid;              // start and bin width in optical path length (scene units)
   Point2i filmSize{0, 0}, cropOffset{0, 0};
   std::string timeFilter = "box";
+  std::optional<RenderRecord> render;  // absent from sidecars written before it
 };
 
 /// The sidecar of `volume`: the same path with extension .json.

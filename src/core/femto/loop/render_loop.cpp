@@ -15,6 +15,7 @@
 #include <femto/core/log.h>
 #include <femto/core/progress.h>
 #include <femto/core/resources.h>
+#include <femto/loop/pass_schedule.h>
 #include <femto/loop/tile_distribution.h>
 #include <femto/render/scene.h>
 
@@ -236,6 +237,7 @@ RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const 
 
 RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
                                ImageBlock& result) {
+  refuseTimeLimit(options, "this integrator (arbitrary output channels)");
   return renderSplatTiles(
       scene, options,
       [&](const Point2f& pos, Sampler& sampler, ImageBlock& block) {
@@ -267,11 +269,15 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
   // Every pass splats the same number of samples per pixel into one block:
   // its developed value (weighted sum / weight sum) is the mean of the passes.
   ImageBlock result(film.cropOffset(), film.cropSize(), film.filter());
+  PassSchedule schedule(options, passes);
+  const double cpuStart = clockSeconds(RenderClock::Cpu);
   // One bar for all passes: its ETA is that of the whole render.
   const uint64_t pixels = uint64_t(film.cropSize().x) * uint64_t(film.cropSize().y);
-  ProgressReporter progress("Rendering", pixels * uint64_t(std::max(passes, 1)), options.progress, options.onProgress);
+  ProgressReporter progress("Rendering", pixels * uint64_t(schedule.expectedPasses()), options.progress,
+                            options.onProgress);
   RenderStats stats;
-  for (int pass = 0; pass < passes; ++pass) {
+  for (int pass = 0; schedule.startPass(pass); ++pass) {
+    progress.setTotal(pixels * uint64_t(schedule.expectedPasses()));
     CameraRadianceFunction radiance = radianceOf(pass);
     auto sampleFn = [&](const Point2f& filmPos, Sampler& sampler) -> Color3f {
       Ray ray;
@@ -287,11 +293,21 @@ RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options,
                                      return block.put(pos, sampleFn(pos, sampler));
                                    },
                                    result, &progress));
-    if (!stats.completed) break;
+    if (!stats.completed) break;  // a cancelled pass is partial: not counted
+    ++stats.passes;
   }
+  stats.timeLimitReached = schedule.limitReached();
+  stats.cpuSeconds = clockSeconds(RenderClock::Cpu) - cpuStart;
+  progress.setTotal(pixels * uint64_t(std::max(stats.passes, 1)));
   progress.finish();
   if (!options.output.empty()) film.develop(result, options.output);
   return stats;
+}
+
+void refuseTimeLimit(const RenderOptions& options, const std::string& integrator) {
+  if (options.timeLimit > 0.0 || options.passes > 0)
+    throw Error(str(integrator, " renders in one pass and cannot render ", options.timeLimit > 0.0 ? "to a time limit" : "a given number of passes",
+                    " (--time-limit, --passes): render it with a sample count (--spp) instead"));
 }
 
 }  // namespace femto

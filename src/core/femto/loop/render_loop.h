@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <femto/math/ray.h>
@@ -79,7 +80,9 @@ RenderStats renderTiles(const Scene& scene, const RenderOptions& options, const 
 /// (arbitrary output variables: any sign; NaN/Inf are refused and counted).
 using ChannelSampleFunction = std::function<void(const Point2f& filmPos, Sampler& sampler, float* values)>;
 
-/// renderTiles for blocks of any number of channels.
+/// renderTiles for blocks of any number of channels: one pass, so a render
+/// asked for a time limit or a pass count (RenderOptions) is refused
+/// (refuseTimeLimit) before any work.
 RenderStats renderChannelTiles(const Scene& scene, const RenderOptions& options, const ChannelSampleFunction& sampleFn,
                                ImageBlock& result);
 
@@ -99,13 +102,18 @@ uint64_t passSeed(uint64_t seed, int pass);
 
 /// Progressive rendering (photon beams, Jarosz et al. 2011 "Progressive
 /// Photon Beams"): `passes` independent estimates of the whole image, each
-/// seeded with passSeed, averaged with equal weights. `radianceOf(pass)` is
+/// seeded with passSeed, averaged with equal weights (RenderOptions::passes
+/// and timeLimit override the count: pass_schedule.h). `radianceOf(pass)` is
 /// called serially before each pass; what it captures (that pass's photon
 /// maps) is released when the pass ends, so memory is that of one pass.
 /// renderSteadyImage is the one-pass case. A cancel stops after the pass in flight.
 using PassRadianceFunction = std::function<CameraRadianceFunction(int pass)>;
 RenderStats renderSteadyPasses(const Scene& scene, const RenderOptions& options, int passes,
                                const PassRadianceFunction& radianceOf);
+
+/// Throws an Error naming `integrator` when `options` ask for a time limit or
+/// a pass count, which an integrator that renders in one pass cannot honour.
+void refuseTimeLimit(const RenderOptions& options, const std::string& integrator);
 
 /// Adds a pass's statistics to a running total (samples and invalid samples
 /// summed, seconds summed, completed only while every pass completed).

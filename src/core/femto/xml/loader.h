@@ -26,6 +26,12 @@ struct LoadOptions {
   std::optional<Point2i> resolution;
   /// --spp N: overrides the sampler's sample_count.
   std::optional<int> sampleCount;
+  /// --integrator FILE: the scene's integrator is replaced by the one this
+  /// file holds (a <scene> with an <integrator>, like the fog box's
+  /// integrator-*.xml, or an <integrator> root). It is included after the
+  /// scene's own elements: it may use the scene's $names, and its
+  /// <default>s only set names the scene and -D do not.
+  std::optional<std::filesystem::path> integratorFile;
 };
 
 /// Load a scene file. Throws femto::Error ("file:line: message\n  <line text>") on bad input.

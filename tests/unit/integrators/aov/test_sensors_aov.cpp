@@ -217,3 +217,13 @@ TEST(MomentIntegrator, MeanAndSecondMomentPerNestedIntegrator) {
     EXPECT_GT(px[at["dl.m2." + ch]], mean * mean);
   }
 }
+
+TEST(AOVIntegrator, RefusesATimeLimitBeforeAnyWork) {
+  // One pass of arbitrary channels: a time limit or a pass count cannot be honoured.
+  auto scene = aovPlaneScene("dd.y:depth");
+  RenderOptions options;
+  options.progress = false;
+  options.timeLimit = 5.0;
+  std::string message = errorMessageOf([&] { scene->integrator().render(*scene, options); });
+  EXPECT_NE(message.find("cannot render to a time limit (--time-limit, --passes)"), std::string::npos) << message;
+}
