@@ -41,6 +41,7 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   const char* radiusNote = "a radius in scene units; 0: derived from the scene";
   s.radius = props.getFloat("radius", 0.0f, Range::nonNegative(), radiusNote);
   s.surfaceRadius = props.getFloat("surface_radius", 0.0f, Range::nonNegative(), radiusNote);
+  s.surfaceRadiusFinal = s.surfaceRadius > 0.0f;
   if (props.has("surface_time_width"))
     s.surfaceTimeWidth = props.getFloat("surface_time_width", 0.0f, Range::nonNegative(),
                                         "an OPL width; 0: surface photons deposit at their instant");

@@ -52,6 +52,7 @@ struct BeamSettings : PathDepthSettings {
   bool beamPhotonCountGiven = false;  // by the scene: withBeamsForRadius() then keeps it
   float radius = 0.0f;                // beam kernel radius of pass 0 (0: derived, withBeamRadiusFrom)
   float surfaceRadius = 0.0f;         // surface photon kernel radius of pass 0 (0: derived)
+  bool surfaceRadiusFinal = false;    // given, or derived from pass 0 (not the scene's default it starts from)
   /// Width (OPL) of the surface photons' causal time kernel in pass 0: a
   /// photon arriving at a gather point at OPL t deposits uniformly over
   /// [t, t + w] (docs/design/photon-beams.md, "The surface time kernel").

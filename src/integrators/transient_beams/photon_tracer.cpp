@@ -82,6 +82,16 @@ PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, dou
     : scene_(scene),
       settings_(settings),
       horizon_(horizon),
+      reach_(std::isfinite(horizon) ? cameraReach(scene, settings.observerTime) : CameraReach{}),
+      // Radii shrink pass by pass: pass 0's bound every pass. The surface
+      // radius may still be the scene's default before pass 0 derives it,
+      // which stays within 4 times that (surface_radius_rule.h); without
+      // smooth surfaces no photon lands on one.
+      kernelReach_(settings.radius > 0.0f ? double(settings.radius) + (scene.hasSmoothSurfaces()
+                                                                           ? (settings.surfaceRadiusFinal ? 1.0 : 4.0) *
+                                                                                 double(settings.surfaceRadius)
+                                                                           : 0.0)
+                                          : Infinity),
       emitterPower_(emitterPowerDistribution(scene)),
       sampler_(std::make_unique<PhotonSampler>()) {
   for (const auto& emitter : scene.emitters()) atInfinity_.push_back(isAtInfinity(*emitter, scene.bbox().center()));
@@ -183,13 +193,19 @@ MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceIntera
   if (store && settings_.volumeEstimator != VolumeEstimator::Points) {
     // From the exact vertex, so the beam's OPL and geometry agree.
     const float toSurface = hit ? distance(ph.vertex, si.p) : unboundedSegmentLength(*ph.medium, ph.opl, horizon_);
-    const float length = std::min(toSurface, rouletteLength);
+    float length = std::min(toSurface, rouletteLength);
+    // Past where its light can no longer land in the window, the beam ends (CameraReach).
+    bool cut = false;
+    if (!ph.clockAtFirstSurface && std::isfinite(length)) {
+      const float reachable = reachableLength(reach_, ph.vertex, ph.ray.d, length, ph.opl, ph.eta(), reachLimit(ph.eta()));
+      cut = reachable < length, length = reachable;
+    }
     if (length > 0.0f && std::isfinite(length)) {
       Beam beam{ph.vertex, ph.ray.d, length, ph.power, ph.opl, ph.eta(), int16_t(ph.depth), ph.emitter, ph.medium};
       // Ending on a boundary of its medium (not by the roulette): extended past it.
       beam.before = ph.startExtension;
       beam.offsetDelay = ph.startOffsetDelay;
-      if (hit && !(rouletteLength < toSurface) && !sameMediumAcross(si, ph.ray.d, ph.medium))
+      if (hit && !cut && !(rouletteLength < toSurface) && !sameMediumAcross(si, ph.ray.d, ph.medium))
         beam.after = boundaryExtension(si.n, ph.ray.d);
       beams.push_back(beam);
     }
@@ -214,7 +230,7 @@ bool PhotonTracer::scatterInMedium(Photon& ph, const MediumSample& ms, const Col
   }
   const PhaseFunction& phase = medium.phase();
   if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
-  if (!(ph.opl < horizon_)) return false;
+  if (!(ph.opl < horizon_) || !inReach(ph)) return false;
   Vec3f wo;
   float pdf = 0.0f;
   float weight = phase.sample(-ph.ray.d, sampler.next2D(), wo, pdf);
@@ -227,6 +243,15 @@ bool PhotonTracer::scatterInMedium(Photon& ph, const MediumSample& ms, const Col
   return russianRoulette(ph.power, ph.depth, ph.startLevel, sampler);
 }
 
+double PhotonTracer::reachLimit(float eta) const {
+  return reach_.valid && std::isfinite(kernelReach_) ? horizon_ + (double(eta) + 1.0) * kernelReach_ : Infinity;
+}
+
+bool PhotonTracer::inReach(const Photon& ph) const {
+  // A clock that starts at the first surface has not counted this leg: no bound before it.
+  return ph.clockAtFirstSurface || ph.opl + reach_.distance(ph.vertex) < reachLimit(ph.eta());
+}
+
 bool PhotonTracer::reachSurface(Photon& ph, const SurfaceInteraction& si) const {
   // A photon from an emitter at infinity starts its clock here (emit).
   const bool counted = !ph.clockAtFirstSurface;
@@ -234,7 +259,7 @@ bool PhotonTracer::reachSurface(Photon& ph, const SurfaceInteraction& si) const 
   // An uncounted leg (the clock starts here) is timed as a plane wave.
   ph.lastLeg = counted ? distance(ph.vertex, si.p) : Infinity;
   ph.advance(si.p, counted);
-  return ph.opl < horizon_;
+  return ph.opl < horizon_ && inReach(ph);
 }
 
 bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sampler& sampler,

@@ -34,6 +34,7 @@
 #include <femto/math/distribution.h>
 #include <transient_beams/beam.h>
 #include <transient_beams/beam_settings.h>
+#include <transient_beams/camera_reach.h>
 #include <transient_beams/surface_photon_map.h>
 
 namespace femto {
@@ -91,10 +92,20 @@ class PhotonTracer {
                         std::vector<SurfacePhoton>& photons) const;
   /// Russian roulette past rr_depth segments; false ends the photon.
   bool russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const;
+  /// The OPL past which light of a photon in a medium of index `eta` can
+  /// no longer land in the window anywhere its kernels reach: the horizon
+  /// plus (eta + 1) kernel radii (a camera point within r of a beam or
+  /// surface photon is up to r nearer the camera, and its light's path up to
+  /// eta r shorter); Infinity while the radii are not known (pass 0 derives them).
+  double reachLimit(float eta) const;
+  /// Whether light at the photon's vertex can still land in the window (CameraReach).
+  bool inReach(const Photon& photon) const;
 
   const Scene& scene_;
   const BeamSettings& settings_;
   double horizon_;
+  CameraReach reach_;           // the camera's ray origins, for reachLimit
+  double kernelReach_ = 0.0;    // the largest kernel radius of any pass (Infinity: not known yet)
   Distribution1D emitterPower_;
   std::vector<bool> atInfinity_;  // per emitter: directional or environment (photons' clock starts at a surface)
   std::unique_ptr<Sampler> sampler_;

@@ -199,6 +199,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           const beams::DerivedSurfaceRadius surface =
               beams::deriveSurfaceRadius(scene, traced.surfacePhotons, 4.0 * double(settings.surfaceRadius));
           if (surface.radius > 0.0) settings.surfaceRadius = float(surface.radius);
+          settings.surfaceRadiusFinal = true;
           logInfo("transient_beams: surface radius ", settings.surfaceRadius, " (density ", surface.density,
                   ", pixels ", surface.pixels, ")");
         }
