@@ -56,6 +56,19 @@ MappedVolume MappedVolume::open(const std::filesystem::path& path) {
   return MappedVolume(mapping, bytes, data, volume.height(), volume.width(), volume.bins());
 }
 
+static size_t pageBytes() { return size_t(::sysconf(_SC_PAGESIZE)); }
+
+size_t MappedVolume::mappedPages() const { return (mappedBytes_ + pageBytes() - 1) / pageBytes(); }
+
+size_t MappedVolume::residentPages() const {
+  std::vector<unsigned char> resident(mappedPages());
+  if (::mincore(mapping_, mappedBytes_, resident.data()) != 0)
+    throw Error(str("mincore on a mapped volume failed: ", std::strerror(errno)));
+  size_t n = 0;
+  for (unsigned char r : resident) n += r & 1u;
+  return n;
+}
+
 std::vector<float> MappedVolume::frame(int bin) const {
   if (bin < 0 || bin >= bins_) throw Error(str("bin ", bin, " is outside the volume (bins 0 to ", bins_ - 1, ")"));
   std::vector<float> out(size_t(height_) * size_t(width_) * 3);

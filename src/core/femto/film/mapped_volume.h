@@ -30,6 +30,11 @@ class MappedVolume {
   }
   /// Bin `bin` of every pixel: height * width * 3 floats, row-major, RGB.
   std::vector<float> frame(int bin) const;
+  /// Pages of the mapping (header included) in memory now, by mincore(2):
+  /// what a reader has touched, the kernel's readahead included.
+  size_t residentPages() const;
+  /// Pages the mapping spans.
+  size_t mappedPages() const;
 
  private:
   MappedVolume(void* mapping, size_t mappedBytes, const float* data, int height, int width, int bins);
