@@ -102,6 +102,7 @@ TEST(LoaderExpand, UnusedDefineSuggestsTheScenesParameterNames) {
   EXPECT_EQ(message.find("did you mean"), std::string::npos) << message;
   // A <default> that nothing substitutes is still a candidate.
   options.defines.erase("zzzzzz");
+  options.defines.erase("spp");
   options.defines["widt"] = "1";
   message = loadertest::errorOf([&] { parse("<scene><default name=\"width\" value=\"1\"/></scene>", options); });
   EXPECT_NE(message.find("(did you mean \"width\"?)"), std::string::npos) << message;
