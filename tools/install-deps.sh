@@ -14,6 +14,7 @@ packages=(
   # headers to build it for /usr/bin/python3; pytest runs its tests under ctest.
   pybind11-dev python3-dev python3-pytest
   libopenmpi-dev openmpi-bin  # optional: mpirun -n N femto render (tools/femto/mpi/) and its tests
+  python3-nbconvert python3-ipykernel  # optional: run examples/python's notebook headless in the tests (skipped without)
 )
 missing=()
 for p in "${packages[@]}"; do

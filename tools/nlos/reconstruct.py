@@ -199,6 +199,9 @@ def main(argv=None):
                          args.wavelength)
     np.save(args.output + ".npy", volume.astype(np.float32))
     max_projection_png(volume, args.output + ".png")
+    nz, ny, nx = volume.shape
+    print(f"wrote {args.output}.npy ({args.method} volume, {nz}x{ny}x{nx} voxels, z y x) "
+          f"and {args.output}.png (its maximum over depth)")
 
 
 if __name__ == "__main__":

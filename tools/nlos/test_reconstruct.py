@@ -96,6 +96,17 @@ class HiddenLetter(unittest.TestCase):
                 self.assertLessEqual(abs(depths[method] - DEPTH), voxel[2], f"{method}: depth {depths[method]}")
         self.assertLessEqual(abs(depths["fbp"] - depths["phasor"]), (BOX[5] - BOX[2]) / VOXELS[2] + 1e-9)
 
+    def test_command_line_says_what_it_wrote(self):
+        prefix = os.path.join(self.tmp.name, "rec")
+        capture = os.path.join(self.tmp.name, "letter_True.npy")
+        run = subprocess.run([sys.executable, os.path.join(HERE, "reconstruct.py"), capture, "--box=" + ",".join(map(str, BOX)),
+                              "--voxels", "8,6,4", "-o", prefix], check=True, capture_output=True, text=True)
+        for path in (prefix + ".npy", prefix + ".png"):
+            self.assertTrue(os.path.isfile(path), path)
+            self.assertIn(path, run.stdout)
+        self.assertEqual(np.load(prefix + ".npy").shape, (4, 6, 8))
+        self.assertIn("4x6x8", run.stdout)
+
     def test_confocal_capture_shows_the_letter(self):
         self.check_letter("True")
 

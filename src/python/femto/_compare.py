@@ -1,4 +1,5 @@
 """femto.compare: `femto compare REF TEST --json` (femto_view's compareFiles) for files or arrays."""
+import json
 import os
 import shutil
 import tempfile
@@ -15,6 +16,19 @@ def _as_file(value, folder, name):
     .exr for an image)."""
     if isinstance(value, (str, os.PathLike)):
         return os.fspath(value)
+    axis = getattr(value, "time_axis", None)
+    if axis is not None and getattr(value, "transient", None) is not None:
+        # A RenderResult: its volume with the time window as a sidecar, so the
+        # windows are checked (and no "no sidecar" warning is printed).
+        path = Path(_as_file(value.transient, folder, name))
+        height, width = value.transient.shape[:2]
+        sidecar = {"format": "femto transient volume", "version": 1, "width": width, "height": height,
+                   "bins": axis.bins, "time_unit": "opl", "start_opl": axis.start_opl,
+                   "bin_width_opl": axis.bin_width_opl, "end_opl": axis.start_opl + axis.bins * axis.bin_width_opl}
+        if path.parent != Path(folder):
+            return str(path)  # a memory-mapped volume: its own file and sidecar, never written to
+        path.with_suffix(".json").write_text(json.dumps(sidecar))
+        return str(path)
     if isinstance(value, np.memmap) and _is_whole_npy(value):
         return str(value.filename)
     array = np.ascontiguousarray(value, dtype=np.float32)
@@ -44,7 +58,8 @@ def _is_whole_npy(m):
 def compare(reference, test, epsilon=None, crop=None, mask=None, bins=None) -> dict:
     """Error metrics of `test` against `reference`, as `femto compare --json` reports them.
 
-    Both are paths (.npy volumes or images) or arrays (height x width x bins x 3
+    Both are paths (.npy volumes or images), render results (their volume and
+    time window, which must match) or arrays (height x width x bins x 3
     volumes, height x width x channels images); a volume memory-mapped from a
     .npy is read from its file. epsilon: relMSE's (default 1e-2). crop:
     (x, y, width, height). mask: an image file (white = counted). bins:

@@ -40,5 +40,18 @@ TEST(Resources, DiskBeyondTheFreeSpaceIsRefusedNamingThePath) {
   }
 }
 
+TEST(Resources, LargeOutputsAreAnnouncedWithTheirSize) {
+  const double GiB = 1024.0 * 1024.0 * 1024.0;
+  const uint64_t terabyte = uint64_t(1) << 40;
+  // Below both thresholds: nothing.
+  EXPECT_EQ(largeOutputNotice(1.0 * GiB, terabyte, "the volume"), "");
+  // 4 GiB or more, whatever the free space (known or not).
+  EXPECT_EQ(largeOutputNotice(LargeOutputBytes, terabyte, "the volume"), "the volume will take 4.0 GiB on disk (1.0 TiB free there)");
+  EXPECT_EQ(largeOutputNotice(LargeOutputBytes, std::nullopt, "the volume"), "the volume will take 4.0 GiB on disk");
+  // 10 % of the free space, however small.
+  EXPECT_EQ(largeOutputNotice(0.099 * 1000.0, uint64_t(1000), "v"), "");
+  EXPECT_NE(largeOutputNotice(0.1 * 1000.0, uint64_t(1000), "v"), "");
+}
+
 }  // namespace
 }  // namespace femto

@@ -139,6 +139,30 @@ TEST_F(ViewServerTest, StreaksSteadyAndPercentile) {
   EXPECT_EQ(get("/api/renders/0/percentile?p=x")->status, 404);
 }
 
+TEST_F(ViewServerTest, BrightestBinIsWhereThePageOpens) {
+  const httplib::Result r = get("/api/renders/0/brightest");
+  ASSERT_EQ(r->status, 200);
+  EXPECT_EQ(r->body, str("{\"bin\": ", HotBin, "}\n"));
+  EXPECT_EQ(get("/api/renders/1/brightest")->status, 404);
+}
+
+TEST(ViewedRender, BrightestBinSumsTheLightOfEveryPixel) {
+  fs::path dir = fs::path(::testing::TempDir()) / ("femto_view_brightest_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  NpyVolume volume = NpyVolume::create(dir / "two.npy", H, W, Bins);
+  // Bin 2 holds the single brightest voxel (10), bin 5 more light in all (6 + 6): bin 5 wins.
+  std::vector<float> pixel(size_t(Bins) * 3, 0.0f);
+  for (int c = 0; c < 3; ++c) pixel[2 * 3 + c] = 10.0f, pixel[5 * 3 + c] = 6.0f;
+  volume.writePixels(0, 0, 1, pixel.data());
+  std::fill(pixel.begin(), pixel.end(), 0.0f);
+  for (int c = 0; c < 3; ++c) pixel[5 * 3 + c] = 6.0f;
+  volume.writePixels(1, 0, 1, pixel.data());
+  EXPECT_EQ(ViewedRender(dir / "two.npy").brightestBin(), 5);
+  NpyVolume::create(dir / "black.npy", H, W, Bins);
+  EXPECT_EQ(ViewedRender(dir / "black.npy").brightestBin(), 0);
+  fs::remove_all(dir);
+}
+
 TEST_F(ViewServerTest, ServesThePageAndNothingElse) {
   for (const char* page : {"/", "/index.html", "/viewer.js", "/viewer.css"}) {
     const httplib::Result r = get(page);

@@ -84,6 +84,30 @@ TEST(LoaderExpand, UnusedDefineWarnsOrFailsWhenStrict) {
   EXPECT_NO_THROW(parse(xml, options));
 }
 
+TEST(LoaderExpand, UnusedDefineSuggestsTheScenesParameterNames) {
+  LoadOptions options;
+  options.strict = true;
+  options.defines["sp"] = "8";  // a typo of $spp
+  const std::string xml = "<scene><default name=\"width\" value=\"16\"/>"
+                          "<integer name=\"n\" value=\"$spp\"/><integer name=\"w\" value=\"$width\"/></scene>";
+  options.defines["spp"] = "4";
+  std::string message = loadertest::errorOf([&] { parse(xml, options); });
+  EXPECT_NE(message.find("-D sp=8 was not used: the scene never refers to $sp (did you mean \"spp\"?)"),
+            std::string::npos)
+      << message;
+  // A name close to nothing the scene uses gets no hint.
+  options.defines.erase("sp");
+  options.defines["zzzzzz"] = "1";
+  message = loadertest::errorOf([&] { parse(xml, options); });
+  EXPECT_EQ(message.find("did you mean"), std::string::npos) << message;
+  // A <default> that nothing substitutes is still a candidate.
+  options.defines.erase("zzzzzz");
+  options.defines.erase("spp");
+  options.defines["widt"] = "1";
+  message = loadertest::errorOf([&] { parse("<scene><default name=\"width\" value=\"1\"/></scene>", options); });
+  EXPECT_NE(message.find("(did you mean \"width\"?)"), std::string::npos) << message;
+}
+
 TEST(LoaderExpand, UndefinedParameterIsAnErrorAtItsLine) {
   EXPECT_SCENE_ERROR(parse("<scene>\n\n  <integer name=\"a\" value=\"$nope\"/>\n</scene>"), "test.xml:3",
                      "undefined parameter \"$nope\"");

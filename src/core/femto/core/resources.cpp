@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <femto/base/error.h>
+#include <femto/core/log.h>
 
 namespace femto {
 
@@ -53,8 +54,17 @@ void requireMemory(double bytes, const std::string& what, const std::string& adv
                   " is available: ", advice));
 }
 
+std::string largeOutputNotice(double bytes, std::optional<uint64_t> freeBytes, const std::string& what) {
+  const bool large = bytes >= LargeOutputBytes || (freeBytes && bytes >= LargeOutputFreeFraction * double(*freeBytes));
+  if (!large) return "";
+  return str(what, " will take ", formatBytes(bytes), " on disk",
+             freeBytes ? str(" (", formatBytes(double(*freeBytes)), " free there)") : std::string());
+}
+
 void requireDisk(const std::filesystem::path& path, double bytes, const std::string& what, const std::string& advice) {
   std::optional<uint64_t> free = freeDiskBytes(path);
+  if (std::string notice = largeOutputNotice(bytes, free, what); !notice.empty() && (!free || bytes <= double(*free)))
+    logInfo(notice, ": \"", path.string(), "\"");
   if (!free || bytes <= double(*free)) return;
   throw Error(str(what, " needs ", formatBytes(bytes), " on disk, but the file system of \"", path.string(),
                   "\" has only ", formatBytes(double(*free)), " free: ", advice));

@@ -27,6 +27,15 @@ void requireMemory(double bytes, const std::string& what, const std::string& adv
 /// Throws an Error when `bytes` exceed the free space where `path` goes.
 void requireDisk(const std::filesystem::path& path, double bytes, const std::string& what, const std::string& advice);
 
+/// Outputs this large are announced before the work starts.
+constexpr double LargeOutputBytes = 4.0 * 1024 * 1024 * 1024;
+constexpr double LargeOutputFreeFraction = 0.1;
+
+/// "<what> will take <size> on disk (<free> free there)" when `bytes` reach
+/// LargeOutputBytes or LargeOutputFreeFraction of `freeBytes` (when known);
+/// otherwise "".
+std::string largeOutputNotice(double bytes, std::optional<uint64_t> freeBytes, const std::string& what);
+
 /// Throws an Error, naming `output` (the path as the user gave it), unless a
 /// file can be made in `folder`: probes with a file of its own, which also
 /// catches read-only and pseudo file systems (/proc) that permission bits do

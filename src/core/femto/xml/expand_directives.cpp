@@ -81,9 +81,10 @@ class Expander {
   }
 
   ExpandResult& result_;
-  std::map<std::string, std::string> params_;
 
  public:
+  /// -D values and <default>s, by name.
+  std::map<std::string, std::string> params_;
   /// Names any `$name` referred to, -D or <default>.
   std::set<std::string> used_;
 };
@@ -133,6 +134,10 @@ ExpandResult expandDirectives(XmlNode& root, const fs::path& sceneDir, const std
   root = std::move(wrapper.children.front());
   for (const auto& [name, value] : defines)
     if (!expander.used_.count(name)) result.unusedDefines.push_back(name);
+  std::set<std::string> names = expander.used_;
+  for (const auto& [name, value] : expander.params_)
+    if (!defines.count(name)) names.insert(name);
+  result.parameterNames.assign(names.begin(), names.end());
   return result;
 }
 

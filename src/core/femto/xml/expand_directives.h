@@ -22,6 +22,9 @@ struct ExpandResult {
   /// -D names no `$name` of the expanded scene referred to: they changed
   /// nothing (a misspelt name, or one only an unselected include uses).
   std::vector<std::string> unusedDefines;
+  /// The names the scene refers to (`$name`) or gives a <default> for: the
+  /// candidates of an unused -D's "did you mean" hint.
+  std::vector<std::string> parameterNames;
 };
 
 /// Expand the directives in `root` in document order:

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include <femto/core/log.h>
+#include <femto/core/spelling.h>
 
 namespace femto::xml {
 namespace fs = std::filesystem;
@@ -16,7 +17,7 @@ void reportUnusedDefines(const ExpandResult& expanded, const XmlNode& root, cons
   for (const auto& name : expanded.unusedDefines) {
     std::string file = root.source ? root.source->file : std::string("<scene>");
     std::string message = str(file, ": -D ", name, "=", options.defines.at(name), " was not used: the scene never refers to $",
-                              name);
+                              name, didYouMean(name, expanded.parameterNames));
     if (options.strict) throw Error(message);
     logWarn(message);
   }

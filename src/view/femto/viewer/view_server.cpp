@@ -132,6 +132,9 @@ ViewServer::ViewServer(std::vector<std::unique_ptr<ViewedRender>> renders) : rou
               [](const ViewedRender& r, const httplib::Request& q, httplib::Response& a) {
                 sendFloats(a, r.streakColumn(number(q, 2)).data);
               });
+  renderRoute("/brightest", [](const ViewedRender& r, const httplib::Request&, httplib::Response& a) {
+    a.set_content(str("{\"bin\": ", r.brightestBin(), "}\n"), "application/json");
+  });
   renderRoute("/percentile", [](const ViewedRender& r, const httplib::Request& q, httplib::Response& a) {
     double percent = 99.5;
     const std::string text = q.get_param_value("p");

@@ -52,17 +52,34 @@ int ViewedRender::percentileStride() const {
   return std::max(1, int(std::ceil(std::sqrt(pixels / affordable))));
 }
 
-float ViewedRender::percentileLuminance(double percent) const {
+void ViewedRender::sampleGrid() const {
   std::call_once(histogramOnce_, [this] {
     const int k = percentileStride();
     std::vector<float> pixel(size_t(bins()) * 3);
+    binLight_.assign(size_t(bins()), 0.0);
     for (int y = k / 2; y < height(); y += k)
       for (int x = k / 2; x < width(); x += k) {
         volume_.readPixels(y, x, 1, pixel.data());
-        for (int b = 0; b < bins(); ++b) histogram_.add(luminanceOf(&pixel[size_t(b) * 3]));
+        for (int b = 0; b < bins(); ++b) {
+          const float luminance = luminanceOf(&pixel[size_t(b) * 3]);
+          histogram_.add(luminance);
+          if (std::isfinite(luminance)) binLight_[size_t(b)] += luminance;
+        }
       }
   });
+}
+
+float ViewedRender::percentileLuminance(double percent) const {
+  sampleGrid();
   return histogram_.percentile(percent);
+}
+
+int ViewedRender::brightestBin() const {
+  sampleGrid();
+  int best = 0;
+  for (int b = 1; b < bins(); ++b)
+    if (binLight_[size_t(b)] > binLight_[size_t(best)]) best = b;
+  return best;
 }
 
 }  // namespace femto

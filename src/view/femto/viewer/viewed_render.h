@@ -48,6 +48,10 @@ class ViewedRender {
   /// (stride 1, all voxels, for volumes up to that size).
   float percentileLuminance(double percent) const;
   int percentileStride() const;
+  /// The bin with the most light (summed luminance) over the same grid of
+  /// pixels as percentileLuminance: where the page opens. The first such bin
+  /// on ties; 0 for an all-black volume.
+  int brightestBin() const;
 
  private:
   std::string name_;
@@ -57,6 +61,8 @@ class ViewedRender {
   mutable std::once_flag steadyOnce_, histogramOnce_;
   mutable std::vector<float> steady_;
   mutable LuminanceHistogram histogram_;
+  mutable std::vector<double> binLight_;  // summed luminance per bin, over the percentile grid
+  void sampleGrid() const;
 };
 
 }  // namespace femto

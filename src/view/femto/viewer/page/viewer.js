@@ -405,6 +405,9 @@
     for (const select of [$("render-a"), $("render-b")])
       for (const r of state.renders) select.add(new Option(`${r.index}: ${r.name} (${r.width}x${r.height}, ${r.bins} bins)`, r.index));
     const pixel = readQuery();
+    // Without ?bin= the page opens where the light is, not at bin 0 (often black).
+    if (!new URLSearchParams(location.search).has("bin") && !state.steady)
+      state.bin = (await request(`/api/renders/${state.a}/brightest`, "json")).bin;
     syncControls();
     wire();
     await draw();
