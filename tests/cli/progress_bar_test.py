@@ -20,7 +20,7 @@ if not shutil.which("script"):
     sys.exit(77)
 os.makedirs(work, exist_ok=True)
 command = " ".join([femto, "render", scene, "-D", "integrator=transient_beams", "-D", "passes=3",
-                    "-D", "resolution=16", "-D", "bins=64", "-D", "spp=2", "-D", "photon_count=5000",
+                    "-D", "resolution=16", "-D", "bins=64", "-D", "spp=2", "-D", "photon_count=5000", "-D", "frames=true",
                     "-o", os.path.join(work, "progress.exr")])
 run = subprocess.run(["script", "-qec", command, "/dev/null"], capture_output=True, text=True, timeout=300)
 print(run.stdout[-2000:])

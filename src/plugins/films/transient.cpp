@@ -18,7 +18,7 @@
 // | time_filter_width  | float   | 1 / 0.5   | tent half-width / gaussian standard deviation, in bins         |
 // | complete_steady    | boolean | false     | trace light past the window: complete steady image and `after` |
 // | write_volume       | boolean | true      | keep <stem>.npy (float32, shape (height, width, bins, 3))      |
-// | write_frames       | boolean | true      | write <stem>_frames/frame_NNNNN.exr, one per bin               |
+// | write_frames       | boolean | false     | write <stem>_frames/frame_NNNNN.exr, one per bin               |
 // | (nested rfilter)   | rfilter | box       | pixel filter; must be box (radius <= 0.5): tiles stream to disk|
 //
 // Always written: <stem>.exr + <stem>.png (the steady image: all light that

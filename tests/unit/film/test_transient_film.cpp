@@ -54,6 +54,7 @@ TEST(TransientFilm, PointSamplesLandInTheExpectedBinsOfVolumeAndFrames) {
   // steady image and `after`); test_transient_steady_horizon.cpp covers the default.
   Properties film = transientFilm(W, H, Bins, 0.0, 1.0);
   film.setBool("complete_steady", true);
+  film.setBool("write_frames", true);  // off by default (FramesAreOffByDefault)
   auto scene = test::makeRampScene(film, Properties("test_transient_ramp"), 3);
   RenderStats stats = render(*scene, dir / "out.exr");
   EXPECT_TRUE(stats.completed);
@@ -108,6 +109,17 @@ TEST(TransientFilm, NpyHeaderIsNumpyVersion1WithAlignedData) {
   EXPECT_EQ(text.back(), '\n');
 }
 
+TEST(TransientFilm, FramesAreOffByDefault) {
+  // Per-bin EXR frames cost a fixed ~0.5-1 s per 400-bin render; `femto frames`
+  // makes them on demand, write_frames=true at render time.
+  auto dir = test::scratchDir("transient-noframes");
+  auto scene = test::makeRampScene(transientFilm(8, 4, 6, 0.0, 1.0), Properties("test_transient_ramp"), 1);
+  render(*scene, dir / "out.exr");
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.npy"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out_frames"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(TransientFilm, SumOverBinsEqualsSteadyRestrictedToTheWindow) {
   // Random-length intervals (jitter) spread by a gaussian time filter over a
   // window that cuts columns at both ends: before, inside and after all occur.
@@ -149,6 +161,7 @@ TEST(TransientFilm, VolumeAndSteadyAreBitwiseIdenticalForOneAndTwoThreads) {
   auto dir = test::scratchDir("transient-determinism");
   Properties film = transientFilm(70, 40, 30, 0.0, 2.5);
   film.setString("time_filter", "tent");
+  film.setBool("write_frames", true);
   Properties ramp("test_transient_ramp");
   ramp.setFloat("jitter", 5.0);
   auto scene = test::makeRampScene(film, ramp, 5);

@@ -53,6 +53,7 @@ TEST(TransientStreaming, VolumeLargerThanTheMemoryLimitIsWrittenWithBoundedPeakM
       <integer name="height" value=")" << Height << R"("/>
       <integer name="temporal_bins" value="$bins"/>
       <float name="bin_width_opl" value="1"/>
+      <boolean name="write_frames" value="true"/>
     </film>
     <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
   </sensor>

@@ -112,7 +112,9 @@ TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& sp
   props.getBool("sample_border", false);
   props.getBool("high_quality_edges", false);
   writeVolume_ = props.getBool("write_volume", true);
-  writeFrames_ = props.getBool("write_frames", true);
+  // Off by default: 400 per-bin EXRs cost ~0.5-1 s per render (issue 34);
+  // `femto frames` writes them from the volume on demand.
+  writeFrames_ = props.getBool("write_frames", false);
 }
 
 void TransientFilm::useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where) {

@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""Issue 34 part 1: femto's transient_path against mitransient on mitransient's own
+volumetric Cornell box (../shared/scenes/mitransient-cbox-volumetric, its README).
+Prints the "mitransient-peer" section of docs/BENCHMARKS.md:
+
+  tools/bench/mitransient_peer.py [--spp 16,64,256,1024] [--repeats 3] | tools/bench/benchmarks.py set mitransient-peer
+
+femto reads cbox_volumetric.xml unchanged except the film's start_opl (1000 -> 1010,
+mitransient counts time from the near-clip plane), in a copy written to a temp dir
+beside the scene's meshes (symlinked). 64x64, 400 bins. relMSE = mean over unmasked
+cells of (x - ref)^2 / (ref^2 + 0.01 mean(ref)^2) against reference-mitransient.npy,
+mask = bins 8-24 of rows 7-10, columns 26-37 (the directly seen emitter). CPU = user +
+system of the femto process, median of --repeats runs (one seed per run, relMSE the
+mean over runs). mitransient's CPU seconds are the README's, scaled by this machine's
+reading of ../shared/tools/cpu_calibration.py over the README's 0.345.
+"""
+import argparse
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import provenance  # noqa: E402
+from media_suite import ROOT, cpu_of_children  # noqa: E402
+
+SHARED = os.path.join(os.path.dirname(ROOT.rstrip("/")), "shared")
+SCENE_DIR = os.path.join(SHARED, "scenes", "mitransient-cbox-volumetric")
+CALIBRATION = os.path.join(SHARED, "tools", "cpu_calibration.py")
+README_CALIBRATION = 0.345
+# mitransient's README table (2026-12-03): spp -> (CPU s, relMSE).
+MITRANSIENT = {16: (1.24, 41.5), 64: (1.56, 9.92), 256: (3.33, 2.67)}
+
+
+def shifted_scene(tmp):
+    """The scene with start_opl 1010, in tmp, its meshes linked."""
+    text = open(os.path.join(SCENE_DIR, "cbox_volumetric.xml")).read()
+    old = '<float name="start_opl" value="1000"/>'
+    if text.count(old) != 1:
+        sys.exit(f"{SCENE_DIR}/cbox_volumetric.xml: expected one `{old}`")
+    os.symlink(os.path.join(SCENE_DIR, "meshes"), os.path.join(tmp, "meshes"))
+    path = os.path.join(tmp, "cbox_volumetric.xml")
+    with open(path, "w") as f:
+        f.write(text.replace(old, '<float name="start_opl" value="1010"/>'))
+    return path
+
+
+def render(femto, scene, out, spp, seed, threads):
+    """One femto render; returns (its volume, CPU seconds of the process)."""
+    cmd = [femto, "render", scene, "-o", out, "--seed", str(seed), "--no-progress", "-t", str(threads),
+           "-D", f"spp={spp}", "-D", "res=64"]
+    cpu0 = cpu_of_children()
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    cpu = cpu_of_children() - cpu0
+    if proc.returncode != 0:
+        sys.exit(f"`{' '.join(cmd)}` exited {proc.returncode}:\n{proc.stdout}")
+    return os.path.splitext(out)[0] + ".npy", cpu
+
+
+def mask(shape):
+    keep = np.ones(shape[:3], dtype=bool)
+    keep[7:11, 26:38, 8:25] = False
+    return keep
+
+
+def relmse(x, ref, keep):
+    m = ref.mean()
+    e = (x - ref) ** 2 / (ref ** 2 + 0.01 * m * m)
+    return float(e[keep].mean())
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--femto", default=os.path.join(ROOT, "build", "bin", "femto"))
+    p.add_argument("--spp", default="16,64,256,1024")
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--threads", type=int, default=2)
+    args = p.parse_args(argv)
+    ref = np.load(os.path.join(SCENE_DIR, "reference-mitransient.npy")).astype(np.float64)
+    keep = mask(ref.shape)
+    calib = float(subprocess.run([sys.executable, CALIBRATION], stdout=subprocess.PIPE, text=True,
+                                 check=True).stdout.strip())
+    scale = calib / README_CALIBRATION
+    start = os.getloadavg()
+    tmp = tempfile.mkdtemp(prefix="mitransient-peer-")
+    rows = []
+    try:
+        scene = shifted_scene(tmp)
+        for spp in [int(s) for s in args.spp.split(",")]:
+            cpus, errors = [], []
+            for seed in range(1, args.repeats + 1):
+                npy, cpu = render(args.femto, scene, os.path.join(tmp, "run.exr"), spp, seed, args.threads)
+                x = np.load(npy).astype(np.float64).reshape(ref.shape)
+                cpus.append(cpu)
+                errors.append(relmse(x, ref, keep))
+            c, e = statistics.median(cpus), float(np.mean(errors))
+            rows.append((spp, c, e))
+            print(f"  {spp} spp: CPU {c:.2f} relMSE {e:.4g}", file=sys.stderr, flush=True)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    provenance.header("mitransient's volumetric Cornell box: transient_path against mitransient",
+                      "tools/bench/mitransient_peer.py", "tools/bench/mitransient_peer.py " + " ".join(argv),
+                      notes=[f"64x64, 400 bins, start_opl 1010, emitter's bins masked; CPU the median of "
+                             f"{args.repeats} runs, relMSE the mean over them; {args.threads} render threads",
+                             f"mitransient's CPU from its README scaled by cpu_calibration {calib:.3f} / "
+                             f"{README_CALIBRATION} = {scale:.2f}"])
+    print("| spp | femto CPU s | femto relMSE | femto relMSE × CPU | mitransient CPU s (scaled) | "
+          "mitransient relMSE | mitransient relMSE × CPU | femto's efficiency / mitransient's |")
+    print("|---|---|---|---|---|---|---|---|")
+    for spp, c, e in rows:
+        if spp in MITRANSIENT:
+            mc, me = MITRANSIENT[spp]
+            mc *= scale
+            print(f"| {spp} | {c:.2f} | {e:.4g} | {c * e:.4g} | {mc:.2f} | {me:.4g} | {mc * me:.4g} | "
+                  f"{mc * me / (c * e):.2f} |")
+        else:
+            print(f"| {spp} | {c:.2f} | {e:.4g} | {c * e:.4g} | – | – | – | – |")
+    print()
+    print(provenance.load_line(start, os.getloadavg()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
