@@ -59,6 +59,9 @@ REWRITES = [
      "pixels scaled to the 32x32 film"),
     (r"(--crop\s+)(\d+),(\d+),(\d+),(\d+)",
      lambda m: m.group(1) + ",".join(str(int(v) // SCALE) for v in m.groups()[1:]), "crops scaled to the 32x32 film"),
+    (r"\$HOME/femto\b", "$PWD/prefix", "femto installs to a prefix in the test's folder, not to $HOME"),
+    (r"/tmp/tfb\b", "$PWD/tfb", "out-of-tree builds go to the test's folder, not to /tmp"),
+    (r"^cmake --install build\b", lambda m: f"cmake --install {BUILD}", "`cmake --install build` installs the build tested"),
     (r"^((?:build/bin/)?femto view\b(?!.*--no-browser).*)$", r"\1 --no-browser",
      "`femto view` serves without opening a browser; it passes once it prints its address"),
 ]
