@@ -59,6 +59,8 @@ REWRITES = [
      "pixels scaled to the 32x32 film"),
     (r"(--crop\s+)(\d+),(\d+),(\d+),(\d+)",
      lambda m: m.group(1) + ",".join(str(int(v) // SCALE) for v in m.groups()[1:]), "crops scaled to the 32x32 film"),
+    (r"^((?:build/bin/)?femto compare \S+\.xml\b(?!.*--budgets).*)$", r"\1 --budgets 0.5,1 --reference-time 4",
+     "integrator comparisons at budgets of 0.5 and 1 CPU s against a 4 CPU s reference"),
     (r"\$HOME/femto\b", "$PWD/prefix", "femto installs to a prefix in the test's folder, not to $HOME"),
     (r"/tmp/tfb\b", "$PWD/tfb", "out-of-tree builds go to the test's folder, not to /tmp"),
     (r"^cmake --install build\b", lambda m: f"cmake --install {BUILD}", "`cmake --install build` installs the build tested"),
@@ -174,6 +176,7 @@ def workspace(root, femto, build, folder):
 def run(command, folder, assignments, timeout):
     """Runs one command with bash; returns (ok, seconds, output)."""
     env = dict(os.environ, PATH=f"{folder / 'path'}:{os.environ.get('PATH', '/usr/bin:/bin')}")
+    env["XDG_CACHE_HOME"] = str(folder / "cache")  # femto compare's references: not in the user's cache
     env.pop("FEMTO_PLUGIN_PATH", None)  # femto finds its plugins beside itself, as for a reader
     env.pop("DISPLAY", None)
     env.pop("BROWSER", None)
