@@ -7,6 +7,8 @@ install(TARGETS femto_core EXPORT femtoTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The core's OpenImageIO module goes beside it (the core loads it from its own folder).
+install(TARGETS femto_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # Only the public headers: the loader's stages (xml/ except loader.h) and the
 # Embree wrapper (render/detail/) are the core's own business.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/core/femto DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

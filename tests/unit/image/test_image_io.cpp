@@ -63,6 +63,29 @@ TEST(ImageIO, PngIsSrgbEncodedAndClamped) {
   std::filesystem::remove_all(dir);
 }
 
+// femto writes grey and RGB PNGs itself (zlib); OpenImageIO (libpng) reads
+// them back: an odd size, every byte as written, tagged sRGB.
+TEST(ImageIO, PngWriterRoundTripsThroughAnIndependentDecoder) {
+  auto dir = test::scratchDir("png-writer");
+  for (int channels : {1, 3}) {
+    Bitmap image(7, 5, channels);
+    for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = float((i * 37) % 256) / 255.0f;
+    auto path = dir / ("c" + std::to_string(channels) + ".png");
+    writeDisplayImage(path, image);
+    ImageFileInfo info;
+    Bitmap back = readImage(path, info);
+    ASSERT_EQ(back.width, 7);
+    ASSERT_EQ(back.height, 5);
+    ASSERT_EQ(back.channels, channels);
+    EXPECT_EQ(info.bitsPerSample, 8);
+    EXPECT_TRUE(info.srgbEncoded);
+    for (size_t i = 0; i < image.data.size(); ++i)
+      ASSERT_EQ(std::lround(back.data[i] * 255.0f), long((i * 37) % 256)) << channels << " channels, sample " << i;
+  }
+  EXPECT_EQ(fileCount(dir), 2u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ImageIO, ErrorsNameTheFile) {
   auto dir = test::scratchDir("errors");
   try {

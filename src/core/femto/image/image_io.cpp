@@ -4,14 +4,18 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+#include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <fstream>
 
 #include <femto/base/error.h>
+#include <femto/image/detail/image_module.h>
 
 namespace femto {
 namespace {
@@ -35,6 +39,74 @@ void checkImage(const std::filesystem::path& path, const Bitmap& image) {
   checkShape(path, image);
   if (image.channels != 1 && image.channels != 3 && image.channels != 4)
     throw Error(str("cannot write \"", path.string(), "\": ", image.channels, " channels (1, 3 or 4 are supported)"));
+}
+
+/// libfemto-oiio.so, from the folder this library was loaded from, on first
+/// use (detail/image_module.h); a missing or broken module is an Error.
+const detail::ImageModule& imageModule() {
+  static const detail::ImageModule* module = [] {
+    Dl_info self{};
+    if (!dladdr(reinterpret_cast<void*>(&imageModule), &self) || !self.dli_fname)
+      throw Error("cannot locate libfemto-core to load its OpenImageIO module");
+    const std::filesystem::path file = std::filesystem::path(self.dli_fname).parent_path() / "libfemto-oiio.so";
+    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) throw Error(str("cannot load OpenImageIO support (", file.string(), "): ", dlerror()));
+    auto entry = reinterpret_cast<const detail::ImageModule* (*)()>(dlsym(handle, "femto_image_module"));
+    if (!entry) throw Error(str(file.string(), " has no femto_image_module: ", dlerror()));
+    return entry();
+  }();
+  return *module;
+}
+
+/// Appends one PNG chunk (length, type, data, CRC-32 of type and data).
+void appendChunk(std::string& png, const char (&type)[5], const std::string& data) {
+  auto be32 = [&png](uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) png.push_back(char((v >> shift) & 0xff));
+  };
+  be32(uint32_t(data.size()));
+  const std::string body = std::string(type, 4) + data;
+  png += body;
+  be32(uint32_t(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+}
+
+/// 8-bit grey or RGB samples as a PNG file (ISO/IEC 15948: IHDR, sRGB,
+/// one zlib-compressed IDAT of unfiltered rows, IEND), written with zlib so
+/// the previews every render writes need no OpenImageIO (image_module.h).
+void writePngFile(const std::filesystem::path& file, const std::filesystem::path& shown, int width, int height,
+                  int channels, const std::vector<uint8_t>& samples) {
+  const uint8_t colorType = channels == 1 ? 0 : 2;
+  std::string header;
+  for (uint32_t v : {uint32_t(width), uint32_t(height)})
+    for (int shift = 24; shift >= 0; shift -= 8) header.push_back(char((v >> shift) & 0xff));
+  header += std::string{char(8), char(colorType), char(0), char(0), char(0)};  // depth, type, deflate, filter, no interlace
+  const size_t row = size_t(width) * channels;
+  std::string raw;
+  raw.reserve((row + 1) * height);
+  for (int y = 0; y < height; ++y) {
+    raw.push_back(char(0));  // filter type 0: the row as it is
+    raw.append(reinterpret_cast<const char*>(samples.data()) + y * row, row);
+  }
+  uLongf size = compressBound(uLong(raw.size()));
+  std::string deflated(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(deflated.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                uLong(raw.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
+    throw Error(str("cannot write \"", shown.string(), "\": zlib could not compress the image"));
+  deflated.resize(size);
+  std::string png("\x89PNG\r\n\x1a\n", 8);
+  appendChunk(png, "IHDR", header);
+  appendChunk(png, "sRGB", std::string(1, char(0)));  // sRGB-encoded, perceptual intent
+  appendChunk(png, "IDAT", deflated);
+  appendChunk(png, "IEND", "");
+  std::ofstream out(file, std::ios::binary);
+  out.write(png.data(), std::streamsize(png.size()));
+  out.close();
+  if (!out) throw Error(str("cannot write \"", shown.string(), "\": the file could not be written"));
+}
+
+bool isPng(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".png";
 }
 
 }  // namespace
@@ -100,24 +172,16 @@ void writeDisplayImage(const std::filesystem::path& path, const Bitmap& image) {
   checkImage(path, image);
   std::vector<uint8_t> bytes = quantize8(image);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) throw Error(str("cannot write \"", path.string(), "\": ", OIIO::geterror()));
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
-      throw Error(str("cannot write \"", path.string(), "\": ", out->geterror()));
+    // RGBA goes through OpenImageIO, which stores it unassociated as PNG asks (rare: films write RGB).
+    if (isPng(path) && image.channels != 4) return writePngFile(tmp, path, image.width, image.height, image.channels, bytes);
+    imageModule().write(tmp, path, image.width, image.height, image.channels, bytes.data(), false);
   });
 }
 
 void writeFloatImage(const std::filesystem::path& path, const Bitmap& image) {
   checkImage(path, image);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) throw Error(str("cannot write \"", path.string(), "\": ", OIIO::geterror()));
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-    spec.attribute("oiio:ColorSpace", "Linear");
-    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.data.data()) || !out->close())
-      throw Error(str("cannot write \"", path.string(), "\": ", out->geterror()));
+    imageModule().write(tmp, path, image.width, image.height, image.channels, image.data.data(), true);
   });
 }
 
@@ -133,20 +197,7 @@ Bitmap readImage(const std::filesystem::path& path) {
 }
 
 Bitmap readImage(const std::filesystem::path& path, ImageFileInfo& info) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw Error(str("cannot read image \"", path.string(), "\": ", OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  info.bitsPerSample = int(spec.format.size()) * 8;
-  bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
-  std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-  bool declaredLinear = colorSpace == "Linear" || colorSpace == "linear" || colorSpace == "lin_srgb";
-  info.srgbEncoded = integer && !declaredLinear;
-  Bitmap image(spec.width, spec.height, spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data.data()))
-    throw Error(str("cannot read image \"", path.string(), "\": ", in->geterror()));
-  info.channelNames.assign(spec.channelnames.begin(), spec.channelnames.end());
-  in->close();
-  return image;
+  return imageModule().read(path, info);
 }
 
 }  // namespace femto

@@ -1,6 +1,6 @@
 #pragma once
-// Image files. OpenEXR for float data, OpenImageIO for everything else
-// (PNG previews, textures). Writes go to a temporary file in the same folder
+// Image files. OpenEXR for float data, PNG written with zlib (previews), and
+// OpenImageIO, loaded on first use, for everything else (textures, JPEG, HDR). Writes go to a temporary file in the same folder
 // and are renamed into place, so a reader never sees a half-written file.
 #include <cstdint>
 #include <filesystem>
