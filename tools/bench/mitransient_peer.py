@@ -13,7 +13,7 @@ against reference-mitransient.npy,
 mask = bins 8-24 of rows 7-10, columns 26-37 (the directly seen emitter). CPU = user +
 system of the femto process, median of --repeats runs (one seed per run, relMSE the
 mean over runs). mitransient's CPU seconds are the README's, scaled by this machine's
-reading of ../shared/tools/cpu_calibration.py over the README's 0.345.
+reading of ../shared/tools/cpu_calibration.py (median of 3 before and 3 after) over the README's 0.345.
 """
 import argparse
 import os
@@ -62,6 +62,12 @@ def render(femto, scene, out, spp, seed, threads):
     return os.path.splitext(out)[0] + ".npy", cpu
 
 
+def calibration(runs):
+    """`runs` readings of ../shared/tools/cpu_calibration.py (CPU s of its fixed workload)."""
+    return [float(subprocess.run([sys.executable, CALIBRATION], stdout=subprocess.PIPE, text=True,
+                                 check=True).stdout.strip()) for _ in range(runs)]
+
+
 def mask(shape):
     keep = np.ones(shape[:3], dtype=bool)
     keep[7:11, 26:38, 8:25] = False
@@ -86,9 +92,7 @@ def main(argv):
     args = p.parse_args(argv)
     ref = np.load(os.path.join(SCENE_DIR, "reference-mitransient.npy")).astype(np.float64)
     keep = mask(ref.shape)
-    calib = float(subprocess.run([sys.executable, CALIBRATION], stdout=subprocess.PIPE, text=True,
-                                 check=True).stdout.strip())
-    scale = calib / README_CALIBRATION
+    readings = calibration(3)
     start = os.getloadavg()
     tmp = tempfile.mkdtemp(prefix="mitransient-peer-")
     rows = []
@@ -106,12 +110,16 @@ def main(argv):
             print(f"  {spp} spp: CPU {c:.2f} relMSE {e:.4g}", file=sys.stderr, flush=True)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+    # The machine's speed drifts on a shared host: read it before and after, take the median.
+    readings += calibration(3)
+    calib = statistics.median(readings)
+    scale = calib / README_CALIBRATION
     provenance.header("mitransient's volumetric Cornell box: transient_path against mitransient",
                       "tools/bench/mitransient_peer.py", "tools/bench/mitransient_peer.py " + " ".join(argv),
                       notes=[f"64x64, 400 bins, start_opl 1010, emitter's bins masked; CPU the median of "
                              f"{args.repeats} runs, relMSE the mean over them; {args.threads} render threads",
-                             f"mitransient's CPU from its README scaled by cpu_calibration {calib:.3f} / "
-                             f"{README_CALIBRATION} = {scale:.2f}"])
+                             f"mitransient's CPU from its README scaled by cpu_calibration {calib:.3f} (median of "
+                             f"{', '.join(f'{r:.3f}' for r in readings)}) / {README_CALIBRATION} = {scale:.2f}"])
     print("| spp | femto CPU s | femto relMSE | femto relMSE × CPU | mitransient CPU s (scaled) | "
           "mitransient relMSE | mitransient relMSE × CPU | femto's efficiency / mitransient's |")
     print("|---|---|---|---|---|---|---|---|")
