@@ -761,14 +761,18 @@ class TransientPathIntegrator : public TransientIntegrator {
 
   /// Russian roulette on the throughput with the radiance scaling of
   /// refraction removed, so paths inside glass are not killed unfairly.
+  /// Survival is capped at RouletteCap, 0.99 as in mitransient's prbvolpath
+  /// (Mitsuba's path uses 0.95): in media of albedo near 1 the cap is what
+  /// ends paths, and only late bins see them (docs/design/transient-path.md).
   bool russianRoulette(PathState& s, Sampler& sampler) const {
     if (s.depth < depth_.rrDepth) return true;
-    float q = std::min(s.throughput.maxValue() * s.etaScale, 0.95f);
+    float q = std::min(s.throughput.maxValue() * s.etaScale, RouletteCap);
     if (!(sampler.next1D() < q)) return false;
     s.throughput = s.throughput / q;
     return true;
   }
 
+  static constexpr float RouletteCap = 0.99f;  // russianRoulette
   PathDepthSettings depth_;
   bool hideEmitters_;
   bool observerTime_;
