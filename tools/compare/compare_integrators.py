@@ -177,8 +177,11 @@ def machine_caption(args, version):
     load = " ".join(open("/proc/loadavg").read().split()[:3]) if os.path.exists("/proc/loadavg") else "?"
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     threads = args.threads or os.cpu_count()
-    commit = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(__file__)), "rev-parse", "--short", "HEAD"],
-                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+    try:  # an installed femto, or a machine without git: no commit in the caption
+        commit = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(__file__)), "rev-parse", "--short", "HEAD"],
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+    except OSError:
+        commit = ""
     return (f"{cpu}, {threads} threads, {os.cpu_count()} cores; load average {load}; {version}"
             + (f" (commit {commit})" if commit else "") + f"; {date}")
 

@@ -110,7 +110,10 @@ def machine_caption(args):
     except (OSError, StopIteration):
         pass
     def git(*a):
-        r = subprocess.run(["git", "-C", ROOT, *a], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        try:  # a machine without git: no commit in the caption
+            r = subprocess.run(["git", "-C", ROOT, *a], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        except OSError:
+            return ""
         return r.stdout.strip() if r.returncode == 0 else ""
     commit = git("rev-parse", "--short", "HEAD") or "unknown commit"
     if git("status", "--porcelain", "--", "src", "tools"):
