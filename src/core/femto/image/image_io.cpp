@@ -58,15 +58,18 @@ const detail::ImageModule& imageModule() {
   return *module;
 }
 
+/// Appends v as 4 bytes, most significant first (PNG's integers).
+void appendBigEndian32(std::string& out, uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(char((v >> shift) & 0xff));
+}
+
 /// Appends one PNG chunk (length, type, data, CRC-32 of type and data).
 void appendChunk(std::string& png, const char (&type)[5], const std::string& data) {
-  auto be32 = [&png](uint32_t v) {
-    for (int shift = 24; shift >= 0; shift -= 8) png.push_back(char((v >> shift) & 0xff));
-  };
-  be32(uint32_t(data.size()));
+  appendBigEndian32(png, uint32_t(data.size()));
   const std::string body = std::string(type, 4) + data;
   png += body;
-  be32(uint32_t(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+  appendBigEndian32(png, uint32_t(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()),
+                                        uInt(body.size()))));
 }
 
 /// 8-bit grey or RGB samples as a PNG file (ISO/IEC 15948: IHDR, sRGB,
@@ -76,8 +79,8 @@ void writePngFile(const std::filesystem::path& file, const std::filesystem::path
                   int channels, const std::vector<uint8_t>& samples) {
   const uint8_t colorType = channels == 1 ? 0 : 2;
   std::string header;
-  for (uint32_t v : {uint32_t(width), uint32_t(height)})
-    for (int shift = 24; shift >= 0; shift -= 8) header.push_back(char((v >> shift) & 0xff));
+  appendBigEndian32(header, uint32_t(width));
+  appendBigEndian32(header, uint32_t(height));
   header += std::string{char(8), char(colorType), char(0), char(0), char(0)};  // depth, type, deflate, filter, no interlace
   const size_t row = size_t(width) * channels;
   std::string raw;
