@@ -23,7 +23,7 @@
 // | observer_time        | boolean | true    | include the camera segment in the OPL                        | -    |
 // | equiangular          | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
 // | light_directions     | boolean | true    | a second next-event vertex per scattering vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | - |
-// | time_gating          | boolean | false   | sample next-event distances toward point lights inside the film's time window, truncate free flights past it | - |
+// | time_gating          | boolean | true    | sample next-event distances toward point lights inside the film's time window, truncate free flights past it (false: every sample independent of the window, as before) | - |
 // | before_window_rate   | float   | 0.125   | with time_gating: the share of next-event connections whose light arrives before the window that are made (weighted by its inverse) | - |
 // | skip_before_window   | boolean | false   | with time_gating: before_window_rate = 0 (steady and _before then lack that light) | - |
 // | camera_unwarp        | boolean | false   | mitransient's name for observer_time = false                 | -    |
@@ -136,7 +136,7 @@ class TransientPathIntegrator : public TransientIntegrator {
         observerTime_(props.getBool("observer_time", true)),
         equiangular_(props.getBool("equiangular", true)),
         lightDirections_(props.getBool("light_directions", true)),
-        timeGating_(props.getBool("time_gating", false)),
+        timeGating_(props.getBool("time_gating", true)),
         beforeWindowRate_(props.getFloat("before_window_rate", DefaultBeforeWindowRate)) {
     if (props.getBool("skip_before_window", false)) {
       if (!timeGating_)
@@ -201,7 +201,7 @@ class TransientPathIntegrator : public TransientIntegrator {
       scene.computeInteraction(s.ray, hitAhead, si);
       if (!advance(s, si.p) || s.opl >= horizon) return;
       recordEmission(scene, s, si, recorder);
-      if (pastGate(s)) return;
+      if (pastGate(s, !isPassThrough(si))) return;
       s.equiangular = false;
       if (isPassThrough(si)) {
         s.crossBoundary(si);
@@ -334,8 +334,12 @@ class TransientPathIntegrator : public TransientIntegrator {
 
   /// Whether the path's vertex can no longer contribute before the gate ends
   /// (time gating: OPL + distance to the nearest light, time_gate.h).
-  static bool pastGate(const PathState& s) {
-    return s.gate.gates() && femto::pastGate(s.vertex, s.opl, s.gate, s.lights);
+  /// `vertex`: the path scatters there. A boundary the camera segment passes
+  /// uncounted (observer time off) is no vertex: the one it scatters at
+  /// later may lie nearer a light at the same OPL.
+  bool pastGate(const PathState& s, bool vertex = true) const {
+    return s.gate.gates() && (vertex || segmentCounts(observerTime_, s.cameraSegment)) &&
+           femto::pastGate(s.vertex, s.opl, s.gate, s.lights);
   }
 
   /// The scene's lights for residual-time truncation (LightBound).

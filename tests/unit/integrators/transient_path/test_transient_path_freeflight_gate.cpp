@@ -236,7 +236,8 @@ TEST(TransientPathFreeFlightGate, LightBeforeTheWindowSettingsAreChecked) {
   };
   const std::string gating = R"(<boolean name="time_gating" value="true"/>)";
   EXPECT_NE(
-      errorOf(R"(<boolean name="skip_before_window" value="true"/>)").find("skip_before_window needs time_gating"),
+      errorOf(R"(<boolean name="time_gating" value="false"/><boolean name="skip_before_window" value="true"/>)")
+          .find("skip_before_window needs time_gating"),
       std::string::npos);
   EXPECT_NE(
       errorOf(gating +

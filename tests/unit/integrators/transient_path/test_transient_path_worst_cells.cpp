@@ -46,6 +46,7 @@ constexpr int Pixels = 8, Bins = 16, SamplesPerPixel = 300;
 struct Strategies {
   bool equiangular = true;
   bool lightDirections = true;
+  bool timeGating = true;
   int maxDepth = 2;
   float sigmaT = 0.8f, albedo = 0.75f;
   Point3f light{0.05f, 0.02f, 1.0f};
@@ -56,7 +57,8 @@ std::shared_ptr<Scene> fogWithLight(const Strategies& strategies) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_path"><integer name="max_depth" value=")", strategies.maxDepth, R"("/>
     <boolean name="equiangular" value=")", strategies.equiangular ? "true" : "false", R"("/>
-    <boolean name="light_directions" value=")", strategies.lightDirections ? "true" : "false", R"("/></integrator>
+    <boolean name="light_directions" value=")", strategies.lightDirections ? "true" : "false", R"("/>
+    <boolean name="time_gating" value=")", strategies.timeGating ? "true" : "false", R"("/></integrator>
   <medium id="m" type="homogeneous"><float name="sigma_t" value=")", strategies.sigmaT, R"("/>
     <float name="albedo" value=")", strategies.albedo, R"("/></medium>
   <sensor type="perspective"><ref id="m"/></sensor>
@@ -160,8 +162,10 @@ TEST(TransientPathWorstCells, WorstOnePercentOfCellsHoldNoMoreThanNormalErrorsWo
 
 TEST(TransientPathWorstCells, FreeFlightsAloneExceedTheBound) {
   // The test's power: free-flight vertices alone (infinite variance near the
-  // light) put the error in a few cells.
-  auto [share, bound] = shareAndBound(*fogWithLight({.equiangular = false, .lightDirections = false}));
+  // light) put the error in a few cells. Ungated: time gating keeps free
+  // flights within reach of the window (0.22 against 0.34 gated).
+  auto [share, bound] =
+      shareAndBound(*fogWithLight({.equiangular = false, .lightDirections = false, .timeGating = false}));
   EXPECT_GT(share, bound) << "the worst 1 % of cells hold " << share << " of the squared error";
 }
 
