@@ -5,9 +5,8 @@ Prints the "mitransient-peer" section of docs/BENCHMARKS.md:
 
   tools/bench/mitransient_peer.py [--spp 16,64,256,1024] [--repeats 3] | tools/bench/benchmarks.py set mitransient-peer
 
-femto reads cbox_volumetric.xml unchanged except the film's start_opl (1000 -> 1010,
-mitransient counts time from the near-clip plane), in a copy written to a temp dir
-beside the scene's meshes (symlinked). 64x64, 400 bins. relMSE = mean over unmasked
+femto reads cbox_volumetric.xml unchanged (its transient_hdr_film counts OPL from
+each camera ray's near-clip point, as mitransient does). 64x64, 400 bins. relMSE = mean over unmasked
 cells of (x - ref)^2 / (ref^2 + 0.01 m^2), m the mean of ref over those cells,
 against reference-mitransient.npy,
 mask = bins 8-24 of rows 7-10, columns 26-37 (the directly seen emitter). CPU = user +
@@ -35,19 +34,6 @@ CALIBRATION = os.path.join(SHARED, "tools", "cpu_calibration.py")
 README_CALIBRATION = 0.345
 # mitransient's README table (2026-12-03): spp -> (CPU s, relMSE).
 MITRANSIENT = {16: (1.24, 41.5), 64: (1.56, 9.92), 256: (3.33, 2.67)}
-
-
-def shifted_scene(tmp):
-    """The scene with start_opl 1010, in tmp, its meshes linked."""
-    text = open(os.path.join(SCENE_DIR, "cbox_volumetric.xml")).read()
-    old = '<float name="start_opl" value="1000"/>'
-    if text.count(old) != 1:
-        sys.exit(f"{SCENE_DIR}/cbox_volumetric.xml: expected one `{old}`")
-    os.symlink(os.path.join(SCENE_DIR, "meshes"), os.path.join(tmp, "meshes"))
-    path = os.path.join(tmp, "cbox_volumetric.xml")
-    with open(path, "w") as f:
-        f.write(text.replace(old, '<float name="start_opl" value="1010"/>'))
-    return path
 
 
 def render(femto, scene, out, spp, seed, threads):
@@ -97,7 +83,7 @@ def main(argv):
     tmp = tempfile.mkdtemp(prefix="mitransient-peer-")
     rows = []
     try:
-        scene = shifted_scene(tmp)
+        scene = os.path.join(SCENE_DIR, "cbox_volumetric.xml")
         for spp in [int(s) for s in args.spp.split(",")]:
             cpus, errors = [], []
             for seed in range(1, args.repeats + 1):
@@ -116,7 +102,7 @@ def main(argv):
     scale = calib / README_CALIBRATION
     provenance.header("mitransient's volumetric Cornell box: transient_path against mitransient",
                       "tools/bench/mitransient_peer.py", "tools/bench/mitransient_peer.py " + " ".join(argv),
-                      notes=[f"64x64, 400 bins, start_opl 1010, emitter's bins masked; CPU the median of "
+                      notes=[f"64x64, 400 bins, the scene unchanged, emitter's bins masked; CPU the median of "
                              f"{args.repeats} runs, relMSE the mean over them; {args.threads} render threads",
                              f"mitransient's CPU from its README scaled by cpu_calibration {calib:.3f} (median of "
                              f"{', '.join(f'{r:.3f}' for r in readings)}) / {README_CALIBRATION} = {scale:.2f}"])

@@ -34,6 +34,7 @@ class BeamPass final : public TransientIntegrator {
            double horizon = Infinity);
 
   void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const override;
+  bool countsCameraSegment() const override { return settings_.observerTime; }
 
   const BeamMap& beamMap() const { return beams_; }
   const SurfacePhotonMap& photonMap() const { return photons_; }

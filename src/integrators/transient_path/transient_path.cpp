@@ -213,6 +213,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     }
   }
 
+  bool countsCameraSegment() const override { return observerTime_; }
+
   std::string toString() const override {
     return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
                ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",

@@ -11,6 +11,9 @@
 //
 // mitransient takes the time filter from the integrator (temporal_filter,
 // gaussian_stddev); the scene hands it to this film (docs/coming-from-mitransient.md).
+// Its OPL counts from each camera ray's near-clip point, as mitransient's
+// (Mitsuba 3's cameras start their rays there): near_clip / cos theta less
+// than femto's `transient` film, which counts from the camera.
 #include <femto/core/plugin.h>
 #include <femto/film/transient_film.h>
 
@@ -25,6 +28,7 @@ class MitransientHdrFilm final : public TransientFilm {
     TimeAxisSpelling s;
     s.defaultBins = 2048;
     s.defaultBinWidth = 0.003;
+    s.nearClipOrigin = true;
     return s;
   }
 };

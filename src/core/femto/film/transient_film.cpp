@@ -98,7 +98,8 @@ SourceLocation timeFilterLocation(const Properties& props, const TimeAxisSpellin
 TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& spelling)
     : Film(props, "box", spelling.nestedTimeFilter ? "tfilter" : ""),
       deposit_(readTimeGrid(props, spelling), readTimeFilter(props, spelling), props.getBool("complete_steady", false)),
-      timeFilterGivenAt_(timeFilterLocation(props, spelling)) {
+      timeFilterGivenAt_(timeFilterLocation(props, spelling)),
+      nearClipOrigin_(spelling.nearClipOrigin) {
   // Tiles are written out as soon as they are done, so they must not share
   // pixels: a filter reaching past the pixel a sample falls in would need the
   // neighbouring tiles too (see docs/transient-film.md).

@@ -32,6 +32,10 @@ struct TimeAxisSpelling {
   /// The time filter as a nested <rfilter name="tfilter"> (Mitsuba 2) rather
   /// than time_filter / time_filter_width.
   bool nestedTimeFilter = false;
+  /// Where OPL 0 is on each camera ray: at the sensor's centre of projection
+  /// (femto's convention) or, as mitransient counts, at the ray's near-clip
+  /// point (near_clip / cos theta from the camera for a perspective one).
+  bool nearClipOrigin = false;
 };
 
 class TransientFilm : public Film {
@@ -51,6 +55,9 @@ class TransientFilm : public Film {
   const TimeGrid& timeGrid() const { return deposit_.grid(); }
   const TimeFilter& timeFilter() const { return deposit_.filter(); }
   const TimeDeposit& timeDeposit() const { return deposit_; }
+  /// Does each camera ray's OPL count from its near-clip point (mitransient's
+  /// films, TimeAxisSpelling::nearClipOrigin) rather than from the sensor?
+  bool nearClipOrigin() const { return nearClipOrigin_; }
   /// Keep the .npy volume (false: it is written to a temporary file for the
   /// frames and removed).
   bool writesVolume() const { return writeVolume_; }
@@ -81,6 +88,7 @@ class TransientFilm : public Film {
   TimeDeposit deposit_;
   SourceLocation timeFilterGivenAt_;  // empty file: the film's filter is its default
   bool writeVolume_ = true, writeFrames_ = true;
+  bool nearClipOrigin_ = false;
 };
 
 }  // namespace femto

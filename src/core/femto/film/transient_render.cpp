@@ -47,11 +47,16 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
   ProgressReporter progress("Rendering", pixels * uint64_t(schedule.expectedPasses()) + frameUnits, options.progress,
                             options.onProgress);
   RenderStats stats;
+  // A near-clip time origin (mitransient's films) moves each camera ray's
+  // horizon later by its near-clip OPL: integrators tracing light (photon
+  // passes) get the largest.
+  const double originBound = film.nearClipOrigin() ? largestNearClipOrigin(scene) : 0.0;
   for (int pass = 0; schedule.startPass(pass); ++pass) {
     progress.setTotal(pixels * uint64_t(schedule.expectedPasses()) + frameUnits);
     std::shared_ptr<const TransientIntegrator> integrator =
-        passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene));
-    TransientRenderContext context{scene, *integrator, film.timeDeposit()};
+        passIntegrator(pass, pulsedHorizon(film.timeDeposit(), scene) + originBound);
+    TransientRenderContext context{scene, *integrator, film.timeDeposit(),
+                                   film.nearClipOrigin() && integrator->countsCameraSegment()};
     auto makeTile = [&](const Point2i& offset, const Point2i& size) -> std::unique_ptr<TileAccumulator> {
       return std::make_unique<TransientTile>(offset, size, context);
     };

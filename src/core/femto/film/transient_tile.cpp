@@ -5,6 +5,9 @@
 
 #include <femto/base/error.h>
 #include <femto/render/emitter.h>
+#include <femto/render/film.h>
+#include <femto/render/medium.h>
+#include <femto/render/sensor.h>
 #include <femto/render/scene.h>
 
 namespace femto {
@@ -18,6 +21,35 @@ void addScaled(float* dst, const Color3f& value, double share) {
 
 }  // namespace
 
+/// The OPL from the sensor to `ray`'s near-clip point (its mint, in the sensor's medium).
+static double nearClipOrigin(const Scene& scene, const Ray& ray) {
+  const Medium* medium = scene.sensor().medium();
+  return double(ray.tmin) * (medium ? double(medium->eta()) : 1.0);
+}
+
+double largestNearClipOrigin(const Scene& scene) {
+  // mint grows toward the film's edges (perspective: near_clip / cos theta);
+  // a 9 x 9 grid of film positions (its corners and edges included) times
+  // the aperture's corners and centre.
+  const Sensor& sensor = scene.sensor();
+  const Point2i size = sensor.film().cropSize();
+  const Point2i offset = sensor.film().cropOffset();
+  double largest = 0.0;
+  constexpr int Grid = 8;
+  for (int i = 0; i <= Grid; ++i)
+    for (int j = 0; j <= Grid; ++j)
+      for (Point2f aperture : {Point2f(0.5f, 0.5f), Point2f(0.0f, 0.0f), Point2f(1.0f, 0.0f), Point2f(0.0f, 1.0f),
+                               Point2f(1.0f, 1.0f)}) {
+        Point2f pos(float(offset.x) + float(size.x) * float(i) / Grid, float(offset.y) + float(size.y) * float(j) / Grid);
+        Ray ray;
+        if (sensor.sampleRay(pos, aperture, ray).isBlack()) continue;
+        largest = std::max(largest, nearClipOrigin(scene, ray));
+      }
+  // A margin for positions between the grid's (where mint is not larger for
+  // the cameras femto has; float rounding aside).
+  return largest * (1.0 + 1e-5);
+}
+
 double pulsedHorizon(const TimeDeposit& deposit, const Scene& scene) {
   double earliest = 0.0;
   bool any = false;
@@ -30,7 +62,7 @@ double pulsedHorizon(const TimeDeposit& deposit, const Scene& scene) {
 
 void TransientSampleRecorder::addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) {
   const double horizon = deposit_.horizon();
-  double lo = std::min(opl0, opl1), hi = std::max(opl0, opl1);
+  double lo = std::min(opl0, opl1) - origin_, hi = std::max(opl0, opl1) - origin_;
   if (!pulse.isDelta()) {
     if (lo + pulse.earliest() >= horizon) return;  // NaN is kept, for valid() to refuse
     contributions_.push_back({lo, hi, value, pulse});
@@ -87,6 +119,7 @@ bool TransientTile::addSample(const Point2i& pixel, const Point2f& pos, Sampler&
   Ray ray;
   Color3f weight = context_.scene.sensor().sampleRay(pos, sampler.next2D(), ray);
   recorder_.clear();
+  if (context_.nearClipOrigin) recorder_.setOrigin(nearClipOrigin(context_.scene, ray));
   if (!weight.isBlack()) context_.integrator.sample(context_.scene, ray, sampler, recorder_);
   if (!recorder_.valid(weight)) return false;
   // The box pixel filter: the sample counts fully, and only, for its own

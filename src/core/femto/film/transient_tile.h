@@ -37,8 +37,17 @@ class TransientSampleRecorder final : public RadianceRecorder {
     addPulsed(opl0, opl1, value, EmissionPulse());
   }
   void addPulsed(double opl0, double opl1, const Color3f& value, const EmissionPulse& pulse) override;
-  double horizon() const override { return horizon_; }
-  const TimeGrid& timeGrid() const override { return deposit_.grid(); }
+  /// The OPL this sample's contributions are measured from (the film's time
+  /// origin on this camera ray, TransientFilm::nearClipOrigin): each is
+  /// deposited at its OPL minus `origin`, and horizon() and timeGrid() are
+  /// given in the integrator's OPL (the grid's start and the horizon plus `origin`).
+  void setOrigin(double origin) {
+    origin_ = origin;
+    shiftedGrid_ = deposit_.grid();
+    shiftedGrid_.start += origin;
+  }
+  double horizon() const override { return horizon_ + origin_; }
+  const TimeGrid& timeGrid() const override { return origin_ == 0.0 ? deposit_.grid() : shiftedGrid_; }
 
   void clear() { contributions_.clear(), hasSteps_ = false; }
   /// All values valid (finite, non-negative) after scaling by `weight`, all OPLs finite?
@@ -60,6 +69,8 @@ class TransientSampleRecorder final : public RadianceRecorder {
   };
   const TimeDeposit& deposit_;
   double horizon_;
+  double origin_ = 0.0;
+  TimeGrid shiftedGrid_;
   std::vector<Contribution> contributions_;
   bool hasSteps_ = false;
   BinShares shares_;
@@ -70,7 +81,16 @@ struct TransientRenderContext {
   const Scene& scene;
   const TransientIntegrator& integrator;
   const TimeDeposit& deposit;
+  /// OPL 0 at each camera ray's near-clip point (mitransient's films) when
+  /// the integrator counts the camera segment.
+  bool nearClipOrigin = false;
 };
+
+/// The largest near-clip OPL offset of any camera ray of `scene`'s sensor
+/// (what a near-clip time origin adds to the horizon an integrator sees):
+/// the near-clip distance along the ray times the index of the sensor's
+/// medium, maximised over the film's corners, edges and aperture.
+double largestNearClipOrigin(const Scene& scene);
 
 class TransientTile final : public TileAccumulator {
  public:

@@ -68,6 +68,9 @@ class TransientIntegrator : public Integrator {
   /// Trace one camera sample along `ray` (OPL 0 at the sensor) and report its
   /// contributions to `recorder`.
   virtual void sample(const Scene& scene, const Ray& ray, Sampler& sampler, RadianceRecorder& recorder) const = 0;
+  /// Does the OPL an integrator reports include the camera segment (observer
+  /// time)? If not, a film's near-clip time origin does not apply to it.
+  virtual bool countsCameraSegment() const { return true; }
   /// The steady radiance of one camera sample along `ray`: the sum of what
   /// sample() reports (SteadySumRecorder).
   Color3f steadyRadiance(const Scene& scene, const Ray& ray, Sampler& sampler) const;
