@@ -40,7 +40,7 @@ SECTIONS = [
     ("media-suite", "tools/bench/run_media_suite.sh"),
     ("fog-box-beams", "tools/bench/fog_box_beams.py --resolution 64 --seeds 2 --repeats 3"),
     ("mitransient-peer", "tools/bench/mitransient_peer.py"),
-    ("time-gating", "tools/bench/time_gating.py --repeats 3"),
+    ("time-gating", "tools/bench/time_gating.py"),
     ("beams-pass-split", "tools/bench/beams_pass_split.py --resolution 64 --seeds 2"),
     ("beams-peer", "tools/compare/tof_peer.py --passes 4,16,64 --spp 1 --seeds 3"),
     ("beams-port-window-sum-4", "tools/compare/tof_port_window_sum.py --seeds 8 --passes 4 --spp 2"),

@@ -44,6 +44,7 @@ RenderProcesses::RenderProcesses() {
   gDistribution = std::make_unique<MpiTileDistribution>(MPI_COMM_WORLD);
   setTileDistribution(gDistribution.get());
   // The other ranks' warnings would repeat rank 0's.
+  ownLogLevel_ = int(logLevel());
   if (!writes()) setLogLevel(LogLevel::Error);
 }
 
@@ -57,6 +58,14 @@ RenderProcesses::~RenderProcesses() {
   MPI_Ibarrier(MPI_COMM_WORLD, &barrier);
   waitSleeping(barrier);
   MPI_Finalize();
+}
+
+void RenderProcesses::shareTiles(bool share) {
+  sharing_ = share;
+  if (count_ == 1) return;
+  setTileDistribution(share ? gDistribution.get() : nullptr);
+  // A rank rendering scenes of its own reports them as rank 0 does.
+  setLogLevel(share && rank_ != 0 ? LogLevel::Error : LogLevel(ownLogLevel_));
 }
 
 void RenderProcesses::abortJob(const std::string& message) const {

@@ -8,6 +8,7 @@ namespace femto::cli {
 
 RenderProcesses::RenderProcesses() {}
 RenderProcesses::~RenderProcesses() = default;
+void RenderProcesses::shareTiles(bool share) { sharing_ = share; }
 
 void RenderProcesses::abortJob(const std::string& message) const {
   std::cerr << "error: " << message << '\n';
