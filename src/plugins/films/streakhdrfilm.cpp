@@ -9,7 +9,7 @@
 // | exposure_time (bin_width_opl) | float | 1     | OPL covered by one bin (femto: bin_width_opl)    |
 // | time_offset (start_opl)   | float   | 0       | OPL at the start of bin 0 (femto: start_opl)     |
 // | <rfilter name="tfilter">  | rfilter | box     | time filter over bins: box (radius 0.5), tent, gaussian |
-// | (other nested rfilter)    | rfilter | box     | pixel filter (box: tiles stream to disk)         |
+// | (other nested rfilter)    | rfilter | gaussian | pixel filter (Mitsuba 2's default; any filter)     |
 // | high_quality_edges, file_format, pixel_format, component_format | | | as hdrfilm |
 //
 // Everything else (complete_steady, write_volume, write_frames, start_time /
@@ -35,6 +35,7 @@ class StreakHdrFilm final : public TransientFilm {
     TimeAxisSpelling s;
     s.bins = "time";
     s.binsAlias = "num_bins";
+    s.defaultPixelFilter = "gaussian";  // Mitsuba 2's films'
     s.binWidth = "exposure_time";
     s.binWidthAlias = "bin_width_opl";
     s.start = "time_offset";

@@ -19,7 +19,7 @@
 // | complete_steady    | boolean | false     | trace light past the window: complete steady image and `after` |
 // | write_volume       | boolean | true      | keep <stem>.npy (float32, shape (height, width, bins, 3))      |
 // | write_frames       | boolean | false     | write <stem>_frames/frame_NNNNN.exr, one per bin               |
-// | (nested rfilter)   | rfilter | box       | pixel filter; must be box (radius <= 0.5): tiles stream to disk|
+// | (nested rfilter)   | rfilter | box       | pixel filter (any; wider than a pixel, tiles carry a border merged as they stream) |
 //
 // Always written: <stem>.exr + <stem>.png (the steady image: all light that
 // arrives before the horizon, i.e. the window's end plus the time filter's

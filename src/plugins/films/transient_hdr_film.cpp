@@ -29,6 +29,7 @@ class MitransientHdrFilm final : public TransientFilm {
     s.defaultBins = 2048;
     s.defaultBinWidth = 0.003;
     s.nearClipOrigin = true;
+    s.defaultPixelFilter = "gaussian";  // Mitsuba 3's films'
     return s;
   }
 };

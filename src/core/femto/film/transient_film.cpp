@@ -96,20 +96,15 @@ SourceLocation timeFilterLocation(const Properties& props, const TimeAxisSpellin
 }  // namespace
 
 TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& spelling)
-    : Film(props, "box", spelling.nestedTimeFilter ? "tfilter" : ""),
+    : Film(props, spelling.defaultPixelFilter, spelling.nestedTimeFilter ? "tfilter" : ""),
       deposit_(readTimeGrid(props, spelling), readTimeFilter(props, spelling), props.getBool("complete_steady", false)),
       timeFilterGivenAt_(timeFilterLocation(props, spelling)),
       nearClipOrigin_(spelling.nearClipOrigin) {
-  // Tiles are written out as soon as they are done, so they must not share
-  // pixels: a filter reaching past the pixel a sample falls in would need the
-  // neighbouring tiles too (see docs/transient-film.md).
-  if (filter()->radius() > 0.5f)
-    throw Error(props.location(), str("transient film: the pixel reconstruction filter has radius ", filter()->radius(),
-                                      " pixels; transient films stream non-overlapping tiles to disk and need "
-                                      "<rfilter type=\"box\"/> (radius <= 0.5)"));
+  // A filter reaching past the pixel a sample falls in: tiles carry a border
+  // that TransientOutput merges with their neighbours' as they stream.
   // Mitsuba 3's sample_border (0.6: high_quality_edges) lets samples outside
-  // the crop window reach its edge pixels through the filter; with the box
-  // filter above no sample reaches past its own pixel, so it changes nothing.
+  // the crop window reach its edge pixels through the filter: accepted, not
+  // done (edge pixels average the samples inside the window).
   props.getBool("sample_border", false);
   props.getBool("high_quality_edges", false);
   writeVolume_ = props.getBool("write_volume", true);

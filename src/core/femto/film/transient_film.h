@@ -36,6 +36,8 @@ struct TimeAxisSpelling {
   /// (femto's convention) or, as mitransient counts, at the ray's near-clip
   /// point (near_clip / cos theta from the camera for a perspective one).
   bool nearClipOrigin = false;
+  /// The pixel filter when the scene gives none: femto's box, or Mitsuba's gaussian.
+  const char* defaultPixelFilter = "box";
 };
 
 class TransientFilm : public Film {

@@ -1,5 +1,8 @@
 #include <femto/film/transient_output.h>
 
+#include <femto/render/image_block.h>
+#include <femto/render/rfilter.h>
+
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
@@ -70,6 +73,17 @@ TransientOutput::TransientOutput(const TransientFilm& film, const std::filesyste
                 str("the steady, before and after images of ", crop.x, "x", crop.y, " pixels"),
                 "render a smaller image (--resolution WxH) or a crop window");
   steady_ = before_ = after_ = Bitmap(crop.x, crop.y, 3);
+  // A filter wider than a pixel holds a band of tile rows until their
+  // neighbours come (consumeBordered): up to 2 x reach + 2 rows of at most
+  // 32-pixel tiles, with their borders.
+  if (const ReconstructionFilter* filter = film.filter(); filter && filter->radius() > 0.5f) {
+    const int border = filterBorder(filter);
+    const double rows = 4.0 * 32.0 + 4.0 * border, width = crop.x + 2.0 * border;
+    requireMemory(rows * width * (3.0 * film.timeGrid().bins + 10.0) * sizeof(float),
+                  str("the band of tiles a ", filter->radius(), "-pixel filter holds (", crop.x, " pixels wide x ",
+                      film.timeGrid().bins, " bins)"),
+                  "use <rfilter type=\"box\"/>, fewer time bins or a narrower image");
+  }
   if (path.empty()) return;
   paths_ = film.outputPaths(path);
   if (!film.writesVolume() && !film.writesFrames()) return;
@@ -95,33 +109,139 @@ TransientOutput::~TransientOutput() {
   }
 }
 
-void TransientOutput::consume(TransientTile& tile, int pass) {
-  tile.normalize();
-  const Point2i origin = tile.offset() - film_.cropOffset();
-  // Running mean over passes: pass 0 stores the tile as it is.
+template <typename RowFn, typename RgbFn>
+void TransientOutput::store(const Point2i& origin, const Point2i& size, int bins, int pass, RowFn&& rowOf,
+                            RgbFn&& rgb) {
+  // Running mean over passes: pass 0 stores the pixels as they are.
   const float keep = float(pass) / float(pass + 1), add = 1.0f / float(pass + 1);
   auto fold = [&](float* stored, const float* fresh, size_t count) {
     for (size_t k = 0; k < count; ++k) stored[k] = pass == 0 ? fresh[k] : keep * stored[k] + add * fresh[k];
   };
   std::vector<float> row;
-  const size_t rowFloats = size_t(tile.size().x) * size_t(tile.bins()) * 3;
-  for (int y = 0; y < tile.size().y; ++y) {
+  const size_t rowFloats = size_t(size.x) * size_t(bins) * 3;
+  for (int y = 0; y < size.y; ++y) {
     if (volume_) {
       if (pass == 0) {
-        volume_->writePixels(origin.y + y, origin.x, tile.size().x, tile.row(y));
+        volume_->writePixels(origin.y + y, origin.x, size.x, rowOf(y));
       } else {
         row.resize(rowFloats);
-        volume_->readPixels(origin.y + y, origin.x, tile.size().x, row.data());
-        fold(row.data(), tile.row(y), rowFloats);
-        volume_->writePixels(origin.y + y, origin.x, tile.size().x, row.data());
+        volume_->readPixels(origin.y + y, origin.x, size.x, row.data());
+        fold(row.data(), rowOf(y), rowFloats);
+        volume_->writePixels(origin.y + y, origin.x, size.x, row.data());
       }
     }
-    for (int x = 0; x < tile.size().x; ++x) {
-      fold(steady_.pixel(origin.x + x, origin.y + y), tile.steady(x, y), 3);
-      fold(before_.pixel(origin.x + x, origin.y + y), tile.before(x, y), 3);
-      fold(after_.pixel(origin.x + x, origin.y + y), tile.after(x, y), 3);
+    for (int x = 0; x < size.x; ++x) {
+      fold(steady_.pixel(origin.x + x, origin.y + y), rgb(0, x, y), 3);
+      fold(before_.pixel(origin.x + x, origin.y + y), rgb(1, x, y), 3);
+      fold(after_.pixel(origin.x + x, origin.y + y), rgb(2, x, y), 3);
     }
   }
+}
+
+void TransientOutput::consume(TransientTile& tile, int pass) {
+  if (tile.border() > 0) return consumeBordered(tile, pass);
+  tile.normalize();
+  store(tile.offset() - film_.cropOffset(), tile.size(), tile.bins(), pass, [&](int y) { return tile.row(y); },
+        [&](int k, int x, int y) { return k == 0 ? tile.steady(x, y) : k == 1 ? tile.before(x, y) : tile.after(x, y); });
+}
+
+void TransientOutput::consumeBordered(TransientTile& tile, int pass) {
+  const Point2i local = tile.offset() - film_.cropOffset();
+  if (heldPass_ != pass) {
+    // The pass's first tile is the top-left one, of the full tile size (or the whole crop window).
+    if (local != Point2i(0, 0)) throw Error("a bordered transient tile came before the pass's first tile");
+    endPass(heldPass_);
+    heldPass_ = pass;
+    tileSide_ = tile.size();
+    const Point2i crop = film_.cropSize();
+    tileCount_ = Point2i((crop.x + tileSide_.x - 1) / tileSide_.x, (crop.y + tileSide_.y - 1) / tileSide_.y);
+    tileReach_ = (tile.border() + std::min(tileSide_.x, tileSide_.y) - 1) / std::min(tileSide_.x, tileSide_.y);
+    held_.assign(size_t(tileCount_.x) * size_t(tileCount_.y), Held{});
+  }
+  const int tx = local.x / tileSide_.x, ty = local.y / tileSide_.y;
+  const int k = ty * tileCount_.x + tx;
+  held_[k].raw = tile.takeRaw();
+  held_[k].present = true;
+  // Tiles come in row-major order: those whose every neighbour has come can be stored.
+  for (int y = std::max(0, ty - tileReach_); y <= ty; ++y)
+    for (int x = std::max(0, tx - tileReach_); x <= std::min(tileCount_.x - 1, tx + tileReach_); ++x) {
+      const int j = y * tileCount_.x + x;
+      if (!held_[j].present || held_[j].stored) continue;
+      bool ready = true;
+      for (int ny = y - tileReach_; ny <= y + tileReach_ && ready; ++ny)
+        for (int nx = x - tileReach_; nx <= x + tileReach_ && ready; ++nx)
+          if (ny >= 0 && nx >= 0 && ny < tileCount_.y && nx < tileCount_.x) ready = held_[ny * tileCount_.x + nx].present;
+      if (ready) finalizeTile(j, pass);
+    }
+  releaseTiles(ty);
+}
+
+void TransientOutput::finalizeTile(int k, int pass) {
+  const TransientTile::Raw& self = held_[k].raw;
+  const int bins = film_.timeGrid().bins;
+  const int tx = k % tileCount_.x, ty = k / tileCount_.x;
+  std::vector<float> volume(size_t(self.size.x) * size_t(self.size.y) * size_t(bins) * 3, 0.0f);
+  std::vector<float> rgb(size_t(self.size.x) * size_t(self.size.y) * 9, 0.0f), weight(size_t(self.size.x) * self.size.y, 0.0f);
+  // Every held tile within reach, in tile order: each pixel's sums in one fixed order.
+  for (int ny = ty - tileReach_; ny <= ty + tileReach_; ++ny)
+    for (int nx = tx - tileReach_; nx <= tx + tileReach_; ++nx) {
+      if (ny < 0 || nx < 0 || ny >= tileCount_.y || nx >= tileCount_.x) continue;
+      const Held& h = held_[ny * tileCount_.x + nx];
+      if (!h.present) continue;
+      const TransientTile::Raw& u = h.raw;
+      const int storedW = u.size.x + 2 * u.border, storedH = u.size.y + 2 * u.border;
+      for (int y = 0; y < self.size.y; ++y)
+        for (int x = 0; x < self.size.x; ++x) {
+          // The pixel in u's stored area.
+          const int ux = self.offset.x + x - u.offset.x + u.border, uy = self.offset.y + y - u.offset.y + u.border;
+          if (ux < 0 || uy < 0 || ux >= storedW || uy >= storedH) continue;
+          const size_t i = size_t(uy) * size_t(storedW) + size_t(ux), o = size_t(y) * size_t(self.size.x) + size_t(x);
+          weight[o] += u.weight[i];
+          const float* src = &u.volume[i * size_t(bins) * 3];
+          float* dst = &volume[o * size_t(bins) * 3];
+          for (size_t c = 0; c < size_t(bins) * 3; ++c) dst[c] += src[c];
+          for (int c = 0; c < 3; ++c) {
+            rgb[o * 9 + c] += u.steady[i * 3 + c];
+            rgb[o * 9 + 3 + c] += u.before[i * 3 + c];
+            rgb[o * 9 + 6 + c] += u.after[i * 3 + c];
+          }
+        }
+    }
+  // The filter's weighted mean (Mitsuba's: sum / weight, 0 where nothing landed).
+  for (size_t o = 0; o < weight.size(); ++o) {
+    const float scale = weight[o] != 0.0f ? 1.0f / weight[o] : 0.0f;
+    for (size_t c = 0; c < size_t(bins) * 3; ++c) volume[o * size_t(bins) * 3 + c] *= scale;
+    for (int c = 0; c < 9; ++c) rgb[o * 9 + c] *= scale;
+  }
+  const size_t rowFloats = size_t(self.size.x) * size_t(bins) * 3;
+  store(self.offset - film_.cropOffset(), self.size, bins, pass, [&](int y) { return &volume[size_t(y) * rowFloats]; },
+        [&](int c, int x, int y) { return &rgb[(size_t(y) * size_t(self.size.x) + size_t(x)) * 9 + size_t(c) * 3]; });
+  held_[k].stored = true;
+}
+
+void TransientOutput::releaseTiles(int row) {
+  // A tile's sums are needed until every tile its border reaches is stored:
+  // only tiles of the rows just above `row` can have become free.
+  const int first = std::max(0, row - 2 * tileReach_ - 1) * tileCount_.x;
+  const int last = std::min(int(held_.size()), (row + 1) * tileCount_.x);
+  for (int k = first; k < last; ++k) {
+    Held& h = held_[k];
+    if (!h.present || h.raw.volume.empty()) continue;
+    const int tx = k % tileCount_.x, ty = k / tileCount_.x;
+    bool needed = false;
+    for (int ny = ty - tileReach_; ny <= ty + tileReach_ && !needed; ++ny)
+      for (int nx = tx - tileReach_; nx <= tx + tileReach_ && !needed; ++nx)
+        if (ny >= 0 && nx >= 0 && ny < tileCount_.y && nx < tileCount_.x) needed = !held_[ny * tileCount_.x + nx].stored;
+    if (!needed) h.raw = TransientTile::Raw{};
+  }
+}
+
+void TransientOutput::endPass(int pass) {
+  if (pass < 0 || pass != heldPass_) return;
+  for (int k = 0; k < int(held_.size()); ++k)
+    if (held_[k].present && !held_[k].stored) finalizeTile(k, pass);
+  held_.clear();
+  heldPass_ = -1;
 }
 
 VolumeInfo TransientOutput::volumeInfo(const RenderRecord* record) const {

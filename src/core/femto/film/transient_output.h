@@ -32,7 +32,15 @@ class TransientOutput {
   /// before and after into the images). Pass `pass` > 0 of a progressive
   /// render folds the tile into what earlier passes stored as a running mean,
   /// old + (new - old) / (pass + 1), reading the volume rows back.
+  /// Tiles of a filter wider than a pixel (TransientTile::border()) are held
+  /// until every tile their borders reach has come; each pixel is then the
+  /// sum of every tile's share in tile order over their filter weights
+  /// (the same bits for any thread or rank count), and a tile is freed once
+  /// its neighbours are stored: memory holds a band of a few tile rows.
   void consume(TransientTile& tile, int pass = 0);
+  /// The end of pass `pass`: bordered tiles still held are stored with the
+  /// neighbours that came (all of them, unless the pass was cancelled).
+  void endPass(int pass);
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
   /// `onFrames(done, total)` is called after each batch of frames written.
@@ -49,6 +57,26 @@ class TransientOutput {
  private:
   /// The volume's sidecar (<stem>.json: time window, crop; volume_info.h).
   VolumeInfo volumeInfo(const RenderRecord* record) const;
+  /// Store developed pixels of the crop-window rectangle at `origin` (rows of
+  /// size.x pixels: `row(y)` bins x 3 floats each, `rgb(k, x, y)` the steady
+  /// (k = 0), before (1) and after (2) RGB), folding pass `pass` into earlier ones.
+  template <typename RowFn, typename RgbFn>
+  void store(const Point2i& origin, const Point2i& size, int bins, int pass, RowFn&& row, RgbFn&& rgb);
+  void consumeBordered(TransientTile& tile, int pass);
+  /// Store held tile `k` (its neighbours' borders summed in) and free the tiles no longer needed.
+  void finalizeTile(int k, int pass);
+  void releaseTiles(int row);
+
+  /// Bordered tiles of the current pass (tile grid of the crop window,
+  /// row-major as the render loop hands tiles out).
+  struct Held {
+    TransientTile::Raw raw;
+    bool present = false, stored = false;
+  };
+  std::vector<Held> held_;
+  Point2i tileSide_{0, 0}, tileCount_{0, 0};
+  int tileReach_ = 1;  // tiles a border reaches
+  int heldPass_ = -1;
 
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;

@@ -6,6 +6,8 @@
 #include <femto/base/error.h>
 #include <femto/render/emitter.h>
 #include <femto/render/film.h>
+#include <femto/render/image_block.h>
+#include <femto/render/rfilter.h>
 #include <femto/render/medium.h>
 #include <femto/render/sensor.h>
 #include <femto/render/scene.h>
@@ -106,7 +108,13 @@ TransientTile::TransientTile(const Point2i& offset, const Point2i& size, const T
       bins_(context.deposit.grid().bins),
       context_(context),
       recorder_(context.deposit, pulsedHorizon(context.deposit, context.scene)) {
-  const size_t pixels = size_t(size.x) * size_t(size.y);
+  const ReconstructionFilter* filter = context.scene.sensor().film().filter();
+  if (filter && filter->radius() > 0.5f) {
+    filter_ = filter;
+    border_ = filterBorder(filter);
+  }
+  stored_ = Point2i(size.x + 2 * border_, size.y + 2 * border_);
+  const size_t pixels = size_t(stored_.x) * size_t(stored_.y);
   volume_.assign(pixels * bins_ * 3, 0.0f);
   steady_.assign(pixels * 3, 0.0f);
   before_.assign(pixels * 3, 0.0f);
@@ -122,11 +130,26 @@ bool TransientTile::addSample(const Point2i& pixel, const Point2f& pos, Sampler&
   if (context_.nearClipOrigin) recorder_.setOrigin(nearClipOrigin(context_.scene, ray));
   if (!weight.isBlack()) context_.integrator.sample(context_.scene, ray, sampler, recorder_);
   if (!recorder_.valid(weight)) return false;
-  // The box pixel filter: the sample counts fully, and only, for its own
-  // pixel; the transient film refuses wider filters.
+  if (recorder_.hasSteps() && steps_.empty()) steps_.assign(volume_.size(), 0.0f);
+  if (border_ > 0) {
+    // A wider filter: the sample's contributions go to every pixel of its
+    // footprint (this tile and its border), weighted as ImageBlock weighs them.
+    const FilterFootprint f = filterFootprint(filter_, pos.x - float(offset_.x - border_) - 0.5f,
+                                              pos.y - float(offset_.y - border_) - 0.5f, stored_.x, stored_.y);
+    for (int y = f.y0; y <= f.y1; ++y)
+      for (int x = f.x0; x <= f.x1; ++x) {
+        const float w = f.wx[x - f.x0] * f.wy[y - f.y0];
+        const size_t i = size_t(y) * size_t(stored_.x) + size_t(x);
+        recorder_.commit(weight * w, &volume_[i * size_t(bins_) * 3], &steady_[i * 3], &before_[i * 3],
+                         &after_[i * 3], steps_.empty() ? nullptr : &steps_[i * size_t(bins_) * 3]);
+        weight_[i] += w;
+      }
+    return true;
+  }
+  // Filters of radius 1/2 or less (the box): the sample counts fully, and
+  // only, for its own pixel.
   const int x = pixel.x - offset_.x, y = pixel.y - offset_.y;
   const size_t i = index(x, y);
-  if (recorder_.hasSteps() && steps_.empty()) steps_.assign(volume_.size(), 0.0f);
   recorder_.commit(weight, binsOf(x, y), &steady_[i * 3], &before_[i * 3], &after_[i * 3],
                    steps_.empty() ? nullptr : &steps_[i * size_t(bins_) * 3]);
   weight_[i] += 1.0f;
@@ -151,24 +174,38 @@ void TransientTile::unpack(const float* data, size_t count) {
   }
 }
 
+void TransientTile::addSteps() {
+  if (steps_.empty()) return;
+  // Continuous pulses: each step's whole value in every bin from its start on (in double, then once to float).
+  for (size_t i = 0; i < weight_.size(); ++i) {
+    float* b = &volume_[i * size_t(bins_) * 3];
+    const float* d = &steps_[i * size_t(bins_) * 3];
+    double run[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < bins_; ++k)
+      for (int c = 0; c < 3; ++c) b[k * 3 + c] += float(run[c] += d[k * 3 + c]);
+  }
+  steps_.clear();
+}
+
 void TransientTile::normalize() {
-  for (int y = 0; y < size_.y; ++y)
-    for (int x = 0; x < size_.x; ++x) {
-      const size_t i = index(x, y);
-      // One weight for all quantities: the volume's bins then add up to the
-      // steady value minus before and after, to float precision.
-      const float scale = weight_[i] > 0.0f ? 1.0f / weight_[i] : 0.0f;
-      float* b = binsOf(x, y);
-      if (!steps_.empty()) {
-        // Continuous pulses: each step's whole value in every bin from its start on (in double, then once to float).
-        const float* d = &steps_[i * size_t(bins_) * 3];
-        double run[3] = {0.0, 0.0, 0.0};
-        for (int k = 0; k < bins_; ++k)
-          for (int c = 0; c < 3; ++c) b[k * 3 + c] += float(run[c] += d[k * 3 + c]);
-      }
-      for (int k = 0; k < bins_ * 3; ++k) b[k] *= scale;
-      for (int c = 0; c < 3; ++c) steady_[i * 3 + c] *= scale, before_[i * 3 + c] *= scale, after_[i * 3 + c] *= scale;
-    }
+  addSteps();
+  for (size_t i = 0; i < weight_.size(); ++i) {
+    // One weight for all quantities: the volume's bins then add up to the
+    // steady value minus before and after, to float precision.
+    const float scale = weight_[i] > 0.0f ? 1.0f / weight_[i] : 0.0f;
+    float* b = &volume_[i * size_t(bins_) * 3];
+    for (int k = 0; k < bins_ * 3; ++k) b[k] *= scale;
+    for (int c = 0; c < 3; ++c) steady_[i * 3 + c] *= scale, before_[i * 3 + c] *= scale, after_[i * 3 + c] *= scale;
+  }
+}
+
+TransientTile::Raw TransientTile::takeRaw() {
+  addSteps();
+  Raw raw;
+  raw.offset = offset_, raw.size = size_, raw.border = border_;
+  raw.volume = std::move(volume_), raw.steady = std::move(steady_), raw.before = std::move(before_);
+  raw.after = std::move(after_), raw.weight = std::move(weight_);
+  return raw;
 }
 
 }  // namespace femto

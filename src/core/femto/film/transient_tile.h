@@ -77,6 +77,8 @@ class TransientSampleRecorder final : public RadianceRecorder {
 };
 
 /// Everything a transient tile needs to take samples.
+class ReconstructionFilter;
+
 struct TransientRenderContext {
   const Scene& scene;
   const TransientIntegrator& integrator;
@@ -112,18 +114,37 @@ class TransientTile final : public TileAccumulator {
   /// divide every quantity of every pixel by the pixel's sample weight
   /// (pixels without samples become 0): the developed values.
   void normalize();
-  /// Pixel (x, y) relative to the tile: bins x 3 floats; a tile row is contiguous.
-  float* binsOf(int x, int y) { return &volume_[(size_t(y) * size_.x + x) * bins_ * 3]; }
-  const float* row(int y) const { return &volume_[size_t(y) * size_.x * bins_ * 3]; }
+  /// Pixels a sample of this tile reaches beyond it: 0 for filters of radius
+  /// 1/2 or less (a sample counts for its own pixel only), else
+  /// ceil(radius - 1/2); the tile then stores that border around itself, and
+  /// neighbouring tiles' sums meet there (TransientOutput merges them).
+  int border() const { return border_; }
+  /// The raw sums of a bordered tile, moved out (the steps already added):
+  /// per stored pixel (size + 2 border, row-major) bins x 3, RGB x 3 and the
+  /// filter weight.
+  struct Raw {
+    Point2i offset, size;
+    int border = 0;
+    std::vector<float> volume, steady, before, after, weight;
+  };
+  Raw takeRaw();
+  /// Pixel (x, y) relative to the tile (the border at -border..-1 and size..):
+  /// bins x 3 floats; a tile row is contiguous.
+  float* binsOf(int x, int y) { return &volume_[index(x, y) * bins_ * 3]; }
+  const float* row(int y) const { return &volume_[index(0, y) * bins_ * 3]; }
   /// Steady, before and after RGB of pixel (x, y) relative to the tile.
   const float* steady(int x, int y) const { return &steady_[index(x, y) * 3]; }
   const float* before(int x, int y) const { return &before_[index(x, y) * 3]; }
   const float* after(int x, int y) const { return &after_[index(x, y) * 3]; }
 
  private:
-  size_t index(int x, int y) const { return size_t(y) * size_.x + x; }
+  size_t index(int x, int y) const { return size_t(y + border_) * size_t(stored_.x) + size_t(x + border_); }
+  void addSteps();
   Point2i offset_, size_;
   int bins_;
+  int border_ = 0;
+  Point2i stored_;  // size + 2 border
+  const ReconstructionFilter* filter_ = nullptr;
   const TransientRenderContext& context_;
   TransientSampleRecorder recorder_;
   std::vector<float> volume_, steady_, before_, after_, weight_;

@@ -20,8 +20,7 @@ ImageBlock::ImageBlock(const Point2i& offset, const Point2i& size, const Reconst
   if (channels < 1) throw Error(str("an image block needs at least one channel, got ", channels));
   // A sample inside the tile reaches pixels whose centres lie within the
   // filter radius: at most ceil(radius - 1/2) pixels beyond the tile's edge.
-  float radius = filter ? filter->radius() : 0.5f;
-  border_ = std::max(0, int(std::ceil(radius - 0.5f)));
+  border_ = filterBorder(filter);
   // A whole-image block is checked against the free memory before it is
   // allocated (twice: developing it makes an image of the same order);
   // tiles are far below the threshold and skip the check.
@@ -55,30 +54,34 @@ bool ImageBlock::put(const Point2f& pos, const float* values) {
   return true;
 }
 
+FilterFootprint filterFootprint(const ReconstructionFilter* filter, float px, float py, int width, int height) {
+  const float radius = filter ? filter->radius() : 0.5f;
+  FilterFootprint f;
+  f.x0 = std::max(0, int(std::floor(px - radius)) + 1);
+  f.x1 = std::min(width - 1, int(std::floor(px + radius)));
+  f.y0 = std::max(0, int(std::floor(py - radius)) + 1);
+  f.y1 = std::min(height - 1, int(std::floor(py + radius)));
+  if (f.empty()) return f;
+  f.x1 = std::min(f.x1, f.x0 + FilterFootprint::Max - 1);
+  f.y1 = std::min(f.y1, f.y0 + FilterFootprint::Max - 1);
+  for (int x = f.x0; x <= f.x1; ++x) f.wx[x - f.x0] = filter ? filter->evalTabulated(float(x) - px) : 1.0f;
+  for (int y = f.y0; y <= f.y1; ++y) f.wy[y - f.y0] = filter ? filter->evalTabulated(float(y) - py) : 1.0f;
+  return f;
+}
+
+int filterBorder(const ReconstructionFilter* filter) {
+  return std::max(0, int(std::ceil((filter ? filter->radius() : 0.5f) - 0.5f)));
+}
+
 void ImageBlock::splat(const Point2f& pos, const float* values) {
-  float radius = filter_ ? filter_->radius() : 0.5f;
   // Position relative to the stored area, shifted so pixel i has its centre at i.
-  float px = pos.x - float(offset_.x - border_) - 0.5f;
-  float py = pos.y - float(offset_.y - border_) - 0.5f;
-  // Pixels with centre offset in (-radius, radius]: half-open so that a box
-  // filter of radius 1/2 gives every position exactly one pixel, floor(pos).
-  int x0 = std::max(0, int(std::floor(px - radius)) + 1);
-  int x1 = std::min(storedWidth() - 1, int(std::floor(px + radius)));
-  int y0 = std::max(0, int(std::floor(py - radius)) + 1);
-  int y1 = std::min(storedHeight() - 1, int(std::floor(py + radius)));
-  if (x0 > x1 || y0 > y1) return;  // outside this block: nothing to add
-
-  constexpr int MaxFootprint = 64;
-  float wx[MaxFootprint], wy[MaxFootprint];
-  x1 = std::min(x1, x0 + MaxFootprint - 1);
-  y1 = std::min(y1, y0 + MaxFootprint - 1);
-  for (int x = x0; x <= x1; ++x) wx[x - x0] = filter_ ? filter_->evalTabulated(float(x) - px) : 1.0f;
-  for (int y = y0; y <= y1; ++y) wy[y - y0] = filter_ ? filter_->evalTabulated(float(y) - py) : 1.0f;
-
-  for (int y = y0; y <= y1; ++y) {
+  const FilterFootprint f = filterFootprint(filter_, pos.x - float(offset_.x - border_) - 0.5f,
+                                            pos.y - float(offset_.y - border_) - 0.5f, storedWidth(), storedHeight());
+  if (f.empty()) return;  // outside this block: nothing to add
+  for (int y = f.y0; y <= f.y1; ++y) {
     float* row = &data_[(size_t(y) * storedWidth()) * stride()];
-    for (int x = x0; x <= x1; ++x) {
-      float w = wx[x - x0] * wy[y - y0];
+    for (int x = f.x0; x <= f.x1; ++x) {
+      float w = f.wx[x - f.x0] * f.wy[y - f.y0];
       float* d = row + size_t(x) * stride();
       for (int c = 0; c < channels_; ++c) d[c] += values[c] * w;
       d[channels_] += w;

@@ -14,6 +14,23 @@ namespace femto {
 
 class ReconstructionFilter;
 
+/// The pixels a sample reaches through a reconstruction filter, and their
+/// separable weights: for a position (px, py) in a stored area whose pixel i
+/// has its centre at i, the pixels with centre offset in (-radius, radius]
+/// (half-open, so the box of radius 1/2 gives every position exactly one
+/// pixel), clipped to [0, width) x [0, height). ImageBlock and the transient
+/// film's tiles splat with it.
+struct FilterFootprint {
+  static constexpr int Max = 64;
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;
+  float wx[Max], wy[Max];
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+/// `filter` null: the box of radius 1/2 (weight 1).
+FilterFootprint filterFootprint(const ReconstructionFilter* filter, float px, float py, int width, int height);
+/// Pixels a filter reaches beyond the one a sample falls in: ceil(radius - 1/2).
+int filterBorder(const ReconstructionFilter* filter);
+
 class ImageBlock {
  public:
   /// `offset`/`size` of the tile in film pixels; `filter` may be null (box of radius 0.5).
