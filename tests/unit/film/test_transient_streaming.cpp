@@ -80,5 +80,44 @@ TEST(TransientStreaming, VolumeLargerThanTheMemoryLimitIsWrittenWithBoundedPeakM
   std::filesystem::remove_all(dir);
 }
 
+TEST(TransientStreaming, AGaussianPixelFilterHoldsABandOfTileRowsNotTheVolume) {
+  // A filter wider than a pixel holds tiles until their neighbours come
+  // (TransientOutput::consumeBordered): a band of a few tile rows, whatever
+  // the image's height. 256 x 1024 pixels x 512 bins: a 1.5 GiB volume
+  // against a quarter of it.
+  constexpr int TallHeight = 1024;
+  auto dir = test::scratchDir("transient-streaming-gaussian");
+  std::filesystem::path scene = dir / "scene.xml";
+  std::ofstream(scene) << R"(<scene version="3.0.0">
+  <default name="bins" value="1"/>
+  <integrator type="test_transient_ramp"/>
+  <sensor type="test_film_position">
+    <film type="transient">
+      <integer name="width" value=")" << Width << R"("/>
+      <integer name="height" value=")" << TallHeight << R"("/>
+      <integer name="temporal_bins" value="$bins"/>
+      <float name="bin_width_opl" value="1"/>
+      <rfilter type="gaussian"/>
+    </film>
+    <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
+  </sensor>
+</scene>
+)";
+  auto render = [&](int bins) {
+    return runFemto({"render", scene.string(), "-o", (dir / "out.exr").string(), "-p", FEMTO_TEST_PLUGIN_DIR, "-t", "2",
+                     "--no-progress", "--strict", "-D", "bins=" + std::to_string(bins)});
+  };
+  const long baseline = render(1);
+  ASSERT_GT(baseline, 0) << "femto failed";
+  const long peak = render(Bins);
+  ASSERT_GT(peak, 0) << "femto failed";
+  const uint64_t volumeBytes = uint64_t(Width) * TallHeight * Bins * 3 * sizeof(float);
+  EXPECT_GT(std::filesystem::file_size(dir / "out.npy"), volumeBytes);
+  std::cout << "peak RSS " << peak / 1024 << " MiB (one bin: " << baseline / 1024 << " MiB) for a "
+            << volumeBytes / (1 << 20) << " MiB volume with a gaussian pixel filter\n";
+  EXPECT_LT(uint64_t(peak - baseline) * 1024, volumeBytes / 4);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace femto
