@@ -10,11 +10,12 @@
 from . import _femto
 from ._femto import SceneError
 from ._scene import Scene, load_file, load_string
+from ._dict import ScalarTransform4f, dict_to_xml, load_dict
 from ._result import Progress, RenderResult, TimeAxis
 from ._compare import compare
 from . import view
 
-__all__ = ["SceneError", "Scene", "load_file", "load_string", "plugins", "add_plugin_dir", "compare", "view",
+__all__ = ["SceneError", "Scene", "load_file", "load_string", "load_dict", "dict_to_xml", "ScalarTransform4f", "plugins", "add_plugin_dir", "compare", "view",
            "Progress", "RenderResult", "TimeAxis"]
 
 SceneError.__doc__ = ("A femto error: a scene file (with .file and .line, as the CLI names them), a bad parameter, "
