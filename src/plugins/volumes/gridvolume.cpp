@@ -1,11 +1,7 @@
 // gridvolume: a regular grid of values read from Mitsuba's binary .vol file,
 // interpolated trilinearly.
 //
-// File layout (little endian, Mitsuba 0.6 GridDataSource): bytes 'V','O','L',
-// version byte 3; int32 encoding (1 = float32, the only one supported);
-// int32 xres, yres, zres; int32 channels (1 or 3); six float32 giving the
-// bounding box (xmin ymin zmin xmax ymax zmax); then xres*yres*zres*channels
-// float32 values, x fastest: value[((z * yres + y) * xres + x) * channels + c].
+// The file: render/vol_grid.h.
 //
 // As in Mitsuba 0.6, the samples sit on the grid's vertices: sample (0,0,0)
 // at the box's min corner and (xres-1, yres-1, zres-1) at its max corner;
@@ -28,6 +24,7 @@
 
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
+#include <femto/render/vol_grid.h>
 #include <femto/render/volume.h>
 
 namespace femto {
@@ -108,35 +105,13 @@ class GridVolume final : public Volume {
   }
 
   void read(const Properties& props) {
-    auto fail = [&](const std::string& why) {
+    VolGrid grid = readVolGrid(filename_, [&](const std::string& why) {
       props.raise("filename", str("grid volume file \"", filename_, "\": ", why));
-    };
-    std::ifstream in(filename_, std::ios::binary);
-    if (!in) fail("cannot open it");
-    char magic[4];
-    int32_t header[5];
-    float bounds[6];
-    if (!in.read(magic, 4)) fail("too short for a .vol header");
-    if (std::memcmp(magic, "VOL", 3) != 0) fail("not a Mitsuba .vol file (it does not start with \"VOL\")");
-    if (magic[3] != 3) fail(str("unsupported .vol version ", int(magic[3]), " (expected 3)"));
-    if (!in.read(reinterpret_cast<char*>(header), sizeof header) || !in.read(reinterpret_cast<char*>(bounds), sizeof bounds))
-      fail("too short for a .vol header");
-    if (header[0] != 1) fail(str("unsupported encoding ", header[0], " (only 1 = float32 is supported)"));
-    for (int a = 0; a < 3; ++a) {
-      res_[a] = header[1 + a];
-      if (res_[a] < 1 || res_[a] > 65536) fail(str("bad resolution ", header[1], "x", header[2], "x", header[3]));
-    }
-    channels_ = header[4];
-    if (channels_ != 1 && channels_ != 3) fail(str("has ", channels_, " channels; only 1 or 3 are supported"));
-    box_ = BoundingBox3f(Point3f(bounds[0], bounds[1], bounds[2]), Point3f(bounds[3], bounds[4], bounds[5]));
-    for (float b : bounds)
-      if (!std::isfinite(b)) fail("bounding box is not finite");
-    size_t count = voxels() * size_t(channels_);
-    data_.resize(count);
-    if (!in.read(reinterpret_cast<char*>(data_.data()), std::streamsize(count * sizeof(float))))
-      fail(str("truncated: expected ", count, " float32 values after the header"));
-    for (float v : data_)
-      if (!std::isfinite(v)) fail("contains a value that is not finite");
+    });
+    res_ = grid.res;
+    channels_ = grid.channels;
+    box_ = grid.box;
+    data_ = std::move(grid.data);
   }
 
   std::string filename_;
