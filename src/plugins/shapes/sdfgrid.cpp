@@ -7,7 +7,7 @@
 // diagonal; vertices where the samples' linear interpolation along an edge
 // crosses zero, shared between cells, so the mesh is closed): its vertices
 // lie on the trilinear surface Mitsuba intersects, its triangles within
-// O(cell^2) of it (docs/shapes.md has the measured error). Shading normals:
+// O(cell^2) of it (docs/rendering.md has the measured error). Shading normals:
 // "smooth" (Mitsuba's default) interpolates the grid's central-difference
 // gradient to the vertices; "analytic" uses the triangles' own normals.
 //

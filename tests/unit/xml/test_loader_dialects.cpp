@@ -213,8 +213,4 @@ TEST(LoaderDialects, MitransientNlosSensorLoadsAndPhasorFilmFailsNamingWhatToUse
   });
   EXPECT_EQ(message.rfind("dialect.xml:3: ", 0), 0u) << message;
   EXPECT_NE(message.find("use mitransient's nlos_capture_meter"), std::string::npos) << message;
-  message = loadertest::errorOf([&] {
-    loadStrict(sceneWith(TransientPath, "<film type=\"phasor_hdr_film\"/>"));
-  });
-  EXPECT_NE(message.find("use transient_hdr_film"), std::string::npos) << message;
 }

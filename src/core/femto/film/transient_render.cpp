@@ -11,6 +11,7 @@
 #include <femto/base/error.h>
 #include <femto/base/thread_edges.h>
 #include <femto/core/progress.h>
+#include <femto/film/phasor_film.h>
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_output.h>
 #include <femto/film/transient_tile.h>
@@ -101,6 +102,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
 
 RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
                                   const TransientPassFunction& passIntegrator) {
+  if (auto* phasor = dynamic_cast<const PhasorFilm*>(&scene.sensor().film()))
+    return renderPhasor(scene, *phasor, options, passes, passIntegrator);
   if (auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film()))
     return renderTransient(scene, *film, options, passes, passIntegrator);
   return renderSteadyPasses(scene, options, passes, [&](int pass) -> CameraRadianceFunction {

@@ -24,8 +24,6 @@ std::string adviceForForeignPlugin(ObjectKind kind, const std::string& name) {
   if (kind == ObjectKind::Sensor && name == "nloscapturemeter")
     return " (Mitsuba 2's non-line-of-sight capture meter: use mitransient's nlos_capture_meter, which femto has, "
            "with the transient_nlos_path integrator)";
-  if (kind == ObjectKind::Film && name == "phasor_hdr_film")
-    return " (mitransient's phasor film is not supported; use transient_hdr_film and take the phasor of the .npy volume)";
   if (kind != ObjectKind::Integrator) return "";
   static const std::map<std::string, std::string> advice = {
       {"bdpt", "bidirectional path tracing (Mitsuba's bdpt) is not part of femto"},
