@@ -9,7 +9,15 @@ point, t an OPL) onto voxels v of a box:
   phasor  phasor fields (Liu et al., Nature 2019): every H(w, .) is first
           convolved with the virtual wave P(t) = exp(2 pi i t / lambda)
           exp(-t^2 / (2 sigma^2)) (NumPy's FFT), then back-projected; the
-          reconstruction is |V|.
+          reconstruction is |V|;
+  fk      f-k migration (Lindell et al., SIGGRAPH 2019), confocal captures
+          only: the capture as a wave field over the wall and time (one-way
+          distance s = t / 2, amplitude sqrt(H) s), Fourier transformed,
+          remapped from temporal frequency w to depth frequency kz by Stolt's
+          w = sqrt(kx^2 + ky^2 + kz^2) (times kz / w), transformed back; the
+          reconstruction is its modulus (Lindell et al. show its square; the
+          modulus is what the half-maximum of the other methods reads),
+          sampled trilinearly at the voxels.
 t(v, w) is 2 |v - w| for a confocal capture and |w - v| + |v - y| for one lit
 point y (exhaustive captures are one such capture per lit point). Captures
 rendered with the first and last legs accounted have them removed first
@@ -117,6 +125,55 @@ def back_project(capture, start, width, points, voxels_xyz, lit):
     return volume
 
 
+def fk_migration(capture, start, width, points, voxels_xyz):
+    """f-k migration of a confocal capture (see the module's doc), sampled at voxels_xyz [z, y, x, xyz]."""
+    height, wide, bins = capture.shape
+    dx = points[0, 1, 0] - points[0, 0, 0] if wide > 1 else 1.0
+    dy = points[1, 0, 1] - points[0, 0, 1] if height > 1 else 1.0
+    ds = 0.5 * width  # one-way distance per bin
+    lead = int(round(start / width))  # bins from OPL 0 to the capture's first
+    m = lead + bins
+    s = (np.arange(m) + 0.5) * ds
+    field = np.zeros((2 * m, 2 * height, 2 * wide))
+    field[lead:m, :height, :wide] = np.sqrt(np.maximum(capture, 0.0)).transpose(2, 0, 1) * s[lead:, None, None]
+    spectrum = np.fft.fftshift(np.fft.fftn(field))
+    fw = np.fft.fftshift(np.fft.fftfreq(2 * m, ds))
+    fy = np.fft.fftshift(np.fft.fftfreq(2 * height, dy))
+    fx = np.fft.fftshift(np.fft.fftfreq(2 * wide, dx))
+    kz, ky, kx = np.meshgrid(fw, fy, fx, indexing="ij")
+    w = np.sqrt(kx * kx + ky * ky + kz * kz)
+    # Linear interpolation of the spectrum along its temporal-frequency axis at w.
+    f = (w - fw[0]) / (fw[1] - fw[0])
+    k = np.floor(f).astype(np.int64)
+    a = f - k
+    inside = (k >= 0) & (k + 1 < 2 * m) & (kz > 0)
+    k = np.clip(k, 0, 2 * m - 2)
+    lo = np.take_along_axis(spectrum, k, axis=0)
+    hi = np.take_along_axis(spectrum, k + 1, axis=0)
+    migrated = np.where(inside, ((1.0 - a) * lo + a * hi) * kz / np.maximum(w, 1e-12), 0.0)
+    volume = np.abs(np.fft.ifftn(np.fft.ifftshift(migrated)))
+    volume = volume[:m, :height, :wide]  # [depth index, j, i]
+    # Trilinear samples at the voxels: depth (k + 0.5) ds from the wall, wall point (i, j).
+    origin = points[0, 0]
+    coords = [(voxels_xyz[..., 2] - origin[2]) / ds - 0.5, (voxels_xyz[..., 1] - origin[1]) / dy,
+              (voxels_xyz[..., 0] - origin[0]) / dx]
+    base = [np.floor(c).astype(np.int64) for c in coords]
+    frac = [c - b for c, b in zip(coords, base)]
+    out = np.zeros(voxels_xyz.shape[:3])
+    for corner in range(8):
+        idx, weight = [], 1.0
+        for axis in range(3):
+            bit = (corner >> axis) & 1
+            idx.append(base[axis] + bit)
+            weight = weight * (frac[axis] if bit else 1.0 - frac[axis])
+        ok = np.ones(out.shape, dtype=bool)
+        for axis, n in enumerate(volume.shape):
+            ok &= (idx[axis] >= 0) & (idx[axis] < n)
+        clipped = [np.clip(i, 0, n - 1) for i, n in zip(idx, volume.shape)]
+        out += np.where(ok, weight * volume[clipped[0], clipped[1], clipped[2]], 0.0)
+    return out
+
+
 def smooth_in_time(capture, width, sigma):
     """Gaussian blur of every time signal (standard deviation `sigma`, OPL units), by FFT."""
     bins = capture.shape[2]
@@ -144,6 +201,10 @@ def negative_laplacian(volume):
 def reconstruct(capture, start, width, points, box, voxels, lit, method, wavelength=None, cycles=4.0):
     """The reconstructed volume [z, y, x] (non-negative)."""
     centers = voxel_centers(box, voxels)
+    if method == "fk":
+        if lit is not None:
+            raise ValueError("f-k migration needs a confocal capture (the laser on the watched point)")
+        return fk_migration(capture, start, width, points, centers)
     if method == "fbp":
         # Back-projection samples each signal once per voxel: blur it first to
         # the voxels' reach in OPL (a voxel edge moves t by up to twice its
@@ -185,7 +246,7 @@ def main(argv=None):
     p.add_argument("--laser-origin", type=lambda s: parse_vector(s, 3), default=None)
     p.add_argument("--box", type=lambda s: parse_vector(s, 6), required=True, help="x0,y0,z0,x1,y1,z1")
     p.add_argument("--voxels", type=lambda s: parse_vector(s, 3).astype(int), default=np.array([32, 32, 32]))
-    p.add_argument("--method", choices=["fbp", "phasor"], default="fbp")
+    p.add_argument("--method", choices=["fbp", "phasor", "fk"], default="fbp")
     p.add_argument("--wavelength", type=float, default=None, help="phasor: the virtual wavelength (OPL units)")
     p.add_argument("-o", "--output", required=True, help="output prefix: PREFIX.npy and PREFIX.png")
     args = p.parse_args(argv)

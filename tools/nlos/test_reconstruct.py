@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Reconstruction of a rendered hidden letter (tools/nlos/hidden_letter.xml):
 femto renders a small confocal capture and a single-lit-point capture of a T
-0.6 units in front of the wall; both methods of reconstruct.py must show the
-T and agree on its depth within a voxel.
+0.6 units in front of the wall; every method of reconstruct.py must show the
+T and agree on its depth within a voxel (f-k migration: the confocal capture
+only; precision 0.98, recall 0.97, and 0.67 / 0.40 with the wall mirrored).
 
 Detection: a pixel of the max-projection (over z, normalised to its peak) is
 "object" at half the peak or more (the half-maximum criterion of a point
@@ -69,12 +70,14 @@ class HiddenLetter(unittest.TestCase):
 
     def check_letter(self, confocal):
         depths = {}
-        for method in ("fbp", "phasor"):
+        for method in ("fbp", "phasor") + (("fk",) if confocal == "True" else ()):
             with self.subTest(method=method):
                 volume, width, points = self.reconstruct(confocal, method)
                 voxel = (BOX[3:] - BOX[:3]) / VOXELS
                 if method == "fbp":
                     kernel_fwhm = 2.355 * max(voxel)  # the time blur reconstruct.py applies
+                elif method == "fk":
+                    kernel_fwhm = 2.0 * max(2.0 * WALL_HALF / RES, width)  # the wall's and the bins' sampling
                 else:
                     spacing = 2.0 * WALL_HALF / RES
                     kernel_fwhm = 2.0 * max(spacing, 2.0 * width)  # its default wavelength
