@@ -46,8 +46,10 @@ def parse_vector(text, n):
     return np.array(values)
 
 
-def load_capture(path):
-    """The capture as H[j, i, t] (channels summed) and its time axis (start, width)."""
+def load_capture(path, with_info=False):
+    """The capture as H[j, i, t] (channels summed) and its time axis (start,
+    width); with_info: and the sidecar's fields (femto writes an NLOS
+    capture's geometry there: nlos_* and <stem>_wall.npy)."""
     volume = np.load(path)
     if volume.ndim != 4:
         sys.exit(f"{path}: expected a femto transient volume (height, width, bins, channels), got shape {volume.shape}")
@@ -56,7 +58,38 @@ def load_capture(path):
         sys.exit(f"{path}: its time axis is in {sidecar}, which is missing")
     with open(sidecar) as f:
         info = json.load(f)
-    return volume.sum(axis=3).astype(np.float64), float(info["start_opl"]), float(info["bin_width_opl"])
+    capture = volume.sum(axis=3).astype(np.float64), float(info["start_opl"]), float(info["bin_width_opl"])
+    return capture + (info,) if with_info else capture
+
+
+def capture_geometry(path, info):
+    """From a femto capture's sidecar: the watched points [j, i, xyz] (or
+    None), the lit point (None: confocal), and (sensor, laser) origins when
+    the capture kept its first and last legs (else None)."""
+    points = None
+    if "nlos_wall_points" in info:
+        points = np.load(os.path.join(os.path.dirname(os.path.abspath(path)), info["nlos_wall_points"])).astype(np.float64)
+    lit = np.array(info["nlos_laser_target"]) if info.get("nlos_confocal") is False else None
+    legs = None
+    if info.get("nlos_legs") == "kept":
+        if "nlos_laser_origin" not in info:
+            sys.exit(f"{path}: the capture kept its first and last legs but its sidecar has no laser origin: "
+                     "give --sensor-origin and --laser-origin")
+        legs = (np.array(info["nlos_sensor_origin"]), np.array(info["nlos_laser_origin"]))
+    return points, lit, legs
+
+
+def default_box(points, sensor):
+    """A box in front of a wall perpendicular to z: the wall's extent in x and
+    y, depths from 5 % to 100 % of its width on the sensor's side."""
+    span = points.reshape(-1, 3)
+    lo, hi = span.min(axis=0), span.max(axis=0)
+    if hi[2] - lo[2] > 1e-6 * max(hi[0] - lo[0], hi[1] - lo[1]):
+        sys.exit("the relay wall is not perpendicular to z: give --box x0,y0,z0,x1,y1,z1")
+    width = max(hi[0] - lo[0], hi[1] - lo[1])
+    side = 1.0 if sensor is None or sensor[2] >= lo[2] else -1.0
+    z0, z1 = sorted((lo[2] + side * 0.05 * width, lo[2] + side * width))
+    return np.array([lo[0], lo[1], z0, hi[0], hi[1], z1])
 
 
 def wall_points(height, width, center, half):
@@ -237,27 +270,41 @@ def max_projection_png(volume, path):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("capture", help="the capture's .npy (its .json sidecar beside it)")
-    p.add_argument("--wall-center", type=lambda s: parse_vector(s, 3), default=np.zeros(3))
-    p.add_argument("--wall-half", type=lambda s: parse_vector(s, 2), default=np.ones(2))
+    p.add_argument("--wall-center", type=lambda s: parse_vector(s, 3), default=None,
+                   help="with --wall-half: the relay wall (default: the capture's sidecar, else 0,0,0 and 1,1)")
+    p.add_argument("--wall-half", type=lambda s: parse_vector(s, 2), default=None)
     p.add_argument("--lit-point", type=lambda s: parse_vector(s, 3), default=None,
                    help="the wall point the laser lit (exhaustive capture); confocal when absent")
     p.add_argument("--sensor-origin", type=lambda s: parse_vector(s, 3), default=None,
                    help="with --laser-origin: the capture kept its first and last legs; remove them")
     p.add_argument("--laser-origin", type=lambda s: parse_vector(s, 3), default=None)
-    p.add_argument("--box", type=lambda s: parse_vector(s, 6), required=True, help="x0,y0,z0,x1,y1,z1")
+    p.add_argument("--box", type=lambda s: parse_vector(s, 6), default=None,
+                   help="x0,y0,z0,x1,y1,z1 (default: in front of the wall, as deep as it is wide)")
     p.add_argument("--voxels", type=lambda s: parse_vector(s, 3).astype(int), default=np.array([32, 32, 32]))
     p.add_argument("--method", choices=["fbp", "phasor", "fk"], default="fbp")
     p.add_argument("--wavelength", type=float, default=None, help="phasor: the virtual wavelength (OPL units)")
     p.add_argument("-o", "--output", required=True, help="output prefix: PREFIX.npy and PREFIX.png")
     args = p.parse_args(argv)
-    capture, start, width = load_capture(args.capture)
-    points = wall_points(capture.shape[0], capture.shape[1], args.wall_center, args.wall_half)
+    capture, start, width, info = load_capture(args.capture, with_info=True)
+    # What the command line gives wins over the sidecar's geometry.
+    side_points, side_lit, side_legs = capture_geometry(args.capture, info)
+    if args.wall_center is not None or args.wall_half is not None or side_points is None:
+        center = np.zeros(3) if args.wall_center is None else args.wall_center
+        half = np.ones(2) if args.wall_half is None else args.wall_half
+        points = wall_points(capture.shape[0], capture.shape[1], center, half)
+    else:
+        points = side_points
+    lit = args.lit_point if args.lit_point is not None else side_lit
     if (args.sensor_origin is None) != (args.laser_origin is None):
         p.error("give both --sensor-origin and --laser-origin, or neither")
-    if args.sensor_origin is not None:
-        capture = remove_legs(capture, start, width, points, args.sensor_origin, args.laser_origin, args.lit_point)
-    volume = reconstruct(capture, start, width, points, args.box, args.voxels, args.lit_point, args.method,
-                         args.wavelength)
+    legs = (args.sensor_origin, args.laser_origin) if args.sensor_origin is not None else side_legs
+    if legs is not None:
+        capture = remove_legs(capture, start, width, points, legs[0], legs[1], lit)
+    sensor = np.array(info["nlos_sensor_origin"]) if "nlos_sensor_origin" in info else None
+    box = args.box if args.box is not None else default_box(points, sensor)
+    if args.method == "fk" and lit is not None:
+        p.error("--method fk needs a confocal capture")
+    volume = reconstruct(capture, start, width, points, box, args.voxels, lit, args.method, args.wavelength)
     np.save(args.output + ".npy", volume.astype(np.float32))
     max_projection_png(volume, args.output + ".png")
     nz, ny, nx = volume.shape

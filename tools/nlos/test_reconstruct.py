@@ -110,6 +110,28 @@ class HiddenLetter(unittest.TestCase):
         self.assertEqual(np.load(prefix + ".npy").shape, (4, 6, 8))
         self.assertIn("4x6x8", run.stdout)
 
+    def test_the_capture_alone_is_enough(self):
+        # The sidecar holds the wall's points, the lit point and whether the
+        # legs were kept: no --box, wall or laser options. The default box is
+        # the wall's extent, as deep as it is wide; the letter's depth and
+        # centre come out within a voxel of the truth for both captures.
+        for confocal in ("True", "False"):
+            with self.subTest(confocal=confocal):
+                prefix = os.path.join(self.tmp.name, f"alone_{confocal}")
+                capture = os.path.join(self.tmp.name, f"letter_{confocal}.npy")
+                subprocess.run([sys.executable, os.path.join(HERE, "reconstruct.py"), capture, "--method", "phasor",
+                                "-o", prefix], check=True, capture_output=True, text=True)
+                volume = np.load(prefix + ".npy")
+                info = reconstruct.load_capture(capture, with_info=True)[3]
+                points, lit, _ = reconstruct.capture_geometry(capture, info)
+                self.assertEqual(lit is None, confocal == "True")
+                box = reconstruct.default_box(points, np.array(info["nlos_sensor_origin"]))
+                voxel = (box[3:] - box[:3]) / np.array(volume.shape[::-1])
+                z, y, x = np.unravel_index(volume.argmax(), volume.shape)
+                at = box[:3] + (np.array([x, y, z]) + 0.5) * voxel
+                self.assertLessEqual(abs(at[2] - DEPTH), voxel[2], f"depth {at[2]}")
+                self.assertLessEqual(letter_distance(at[0], at[1]), np.linalg.norm(voxel[:2]), f"at {at}")
+
     def test_confocal_capture_shows_the_letter(self):
         self.check_letter("True")
 

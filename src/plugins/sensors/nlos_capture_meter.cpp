@@ -82,6 +82,10 @@ class NlosCaptureMeter final : public NlosSensor {
   const Point3f& sensorOrigin() const override { return sensorOrigin_; }
   const Emitter* nestedLaser() const override { return laser_.get(); }
   std::optional<Point3f> laserOrigin() const override { return laserOrigin_; }
+  Point3f watchedPoint(int i, int j) const override {
+    return watchedPoints()[size_t(j) * size_t(film().size().x) + size_t(i)];
+  }
+
   Point3f laserTarget(const Point3f& watchedPoint) const override {
     if (confocal_) return watchedPoint;
     if (!lookatUv_) return lookat3d_;

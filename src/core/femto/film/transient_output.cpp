@@ -251,6 +251,7 @@ VolumeInfo TransientOutput::volumeInfo(const RenderRecord* record) const {
   info.filmSize = film_.size(), info.cropOffset = film_.cropOffset();
   info.timeFilter = film_.timeFilter().name();
   if (record) info.render = *record;
+  info.extra = extra_;
   return info;
 }
 

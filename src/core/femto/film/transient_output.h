@@ -46,6 +46,10 @@ class TransientOutput {
   /// `onFrames(done, total)` is called after each batch of frames written.
   /// `record`, when given, goes into the volume's sidecar (how it was rendered).
   void finish(const std::function<void(int done, int total)>& onFrames = {}, const RenderRecord* record = nullptr);
+  /// Fields finish() adds to the volume's sidecar (VolumeInfo::extra).
+  void setSidecarExtra(std::vector<std::pair<std::string, std::string>> extra) { extra_ = std::move(extra); }
+  /// The volume's path (empty when nothing is written).
+  std::filesystem::path volumePath() const { return paths_ ? paths_->volume : std::filesystem::path(); }
   /// Does finish() write one frame per bin (the longest part of it)?
   bool writesFrames() const { return paths_ && volume_ && film_.writesFrames(); }
 
@@ -84,6 +88,7 @@ class TransientOutput {
   std::optional<TempFileGuard> volumeTmpGuard_;  // removed even when a signal ends the process
   std::optional<NpyVolume> volume_;
   Bitmap steady_, before_, after_;
+  std::vector<std::pair<std::string, std::string>> extra_;
 };
 
 /// Write one EXR per time bin of `volume` into `dir` (frame_00000.exr, ...;

@@ -53,6 +53,7 @@ void writeVolumeInfo(const std::filesystem::path& path, const VolumeInfo& info) 
       os << ",\n  \"time_limit_seconds\": " << jsonNumber(r->timeLimit) << ",\n  \"time_clock\": "
          << jsonQuote(r->timeClock) << ",\n  \"time_limit_reached\": " << (r->timeLimitReached ? "true" : "false");
   }
+  for (const auto& [key, value] : info.extra) os << ",\n  " << jsonQuote(key) << ": " << value;
   os << "\n}\n";
   std::string text = os.str();
   writeAtomically(path, [&](const std::filesystem::path& tmp) {

@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include <femto/math/vector.h>
@@ -44,6 +46,9 @@ struct VolumeInfo {
   Point2i filmSize{0, 0}, cropOffset{0, 0};
   std::string timeFilter = "box";
   std::optional<RenderRecord> render;  // absent from sidecars written before it
+  /// More fields, written after the others as given: (key, JSON value)
+  /// (an NLOS capture's geometry: renderTransient). Not read back.
+  std::vector<std::pair<std::string, std::string>> extra;
 };
 
 /// The sidecar of `volume`: the same path with extension .json.

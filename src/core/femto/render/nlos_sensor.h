@@ -37,6 +37,8 @@ class NlosSensor : public Sensor {
   /// False: the OPL of the sensor-to-wall and laser-to-wall legs is removed
   /// from every contribution (mitransient's account_first_and_last_bounces).
   virtual bool accountsFirstAndLastBounces() const = 0;
+  /// The wall point film pixel (i, j) watches.
+  virtual Point3f watchedPoint(int i, int j) const = 0;
 };
 
 }  // namespace femto
