@@ -5,13 +5,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include <femto/base/thread_edges.h>
+#include <femto/loop/tile_distribution.h>
 #include <femto/math/pcg32.h>
 #include <femto/render/bsdf.h>
+#include <femto/render/emitter.h>
 #include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
+#include <femto/render/sensor.h>
+#include <femto/render/shape.h>
 #include <femto/transport/optical_path.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/beam_roulette.h>
@@ -298,6 +304,74 @@ bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, 
   return true;
 }
 
+namespace {
+
+/// The scene's media in an order every rank builds the same way (sensor,
+/// emitters, shapes' interiors and exteriors): beams name theirs by index.
+std::vector<const Medium*> sceneMedia(const Scene& scene) {
+  std::vector<const Medium*> media;
+  auto add = [&](const Medium* m) {
+    if (m && std::find(media.begin(), media.end(), m) == media.end()) media.push_back(m);
+  };
+  add(scene.sensor().medium());
+  for (const auto& e : scene.emitters()) add(e->medium());
+  for (const auto& s : scene.shapes()) add(s->interiorMedium()), add(s->exteriorMedium());
+  return media;
+}
+
+template <typename T>
+void appendBytes(std::vector<char>& out, const T* data, size_t count) {
+  const char* p = reinterpret_cast<const char*>(data);
+  out.insert(out.end(), p, p + count * sizeof(T));
+}
+
+}  // namespace
+
+bool exchangePhotons(const Scene& scene, TileDistribution& job, const std::vector<Beam>& beams,
+                     const std::vector<SurfacePhoton>& photons, PhotonPass& pass) {
+  static_assert(std::is_trivially_copyable_v<Beam> && std::is_trivially_copyable_v<SurfacePhoton>);
+  const std::vector<const Medium*> media = sceneMedia(scene);
+  std::vector<uint32_t> mediumIndex(beams.size());
+  bool named = true;
+  for (size_t i = 0; i < beams.size(); ++i) {
+    auto it = std::find(media.begin(), media.end(), beams[i].medium);
+    named &= it != media.end();
+    mediumIndex[i] = uint32_t(it - media.begin());
+  }
+  // Every rank must take the same way: agree first.
+  const std::vector<char> flags = job.gatherAll(std::vector<char>{char(named)});
+  if (std::find(flags.begin(), flags.end(), char(0)) != flags.end()) return false;
+  std::vector<char> mine;
+  const uint64_t counts[2] = {beams.size(), photons.size()};
+  appendBytes(mine, counts, 2);
+  appendBytes(mine, beams.data(), beams.size());
+  appendBytes(mine, mediumIndex.data(), mediumIndex.size());
+  appendBytes(mine, photons.data(), photons.size());
+  const std::vector<char> all = job.gatherAll(mine);
+  // Rank by rank, in rank order: the blocks' order.
+  for (size_t at = 0; at < all.size();) {
+    uint64_t n[2];
+    std::memcpy(n, all.data() + at, sizeof n);
+    at += sizeof n;
+    const size_t firstBeam = pass.beams.size();
+    pass.beams.resize(firstBeam + n[0]);
+    std::memcpy(static_cast<void*>(pass.beams.data() + firstBeam), all.data() + at, n[0] * sizeof(Beam));
+    at += n[0] * sizeof(Beam);
+    for (uint64_t i = 0; i < n[0]; ++i) {
+      uint32_t m;
+      std::memcpy(&m, all.data() + at + i * sizeof m, sizeof m);
+      pass.beams[firstBeam + i].medium = media.at(m);
+    }
+    at += n[0] * sizeof(uint32_t);
+    const size_t firstPhoton = pass.surfacePhotons.size();
+    pass.surfacePhotons.resize(firstPhoton + n[1]);
+    std::memcpy(static_cast<void*>(pass.surfacePhotons.data() + firstPhoton), all.data() + at,
+                n[1] * sizeof(SurfacePhoton));
+    at += n[1] * sizeof(SurfacePhoton);
+  }
+  return true;
+}
+
 PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon) {
   if (scene.emitters().size() > MaxEmitters)
     throw Error(settings.location, str("transient_beams: the scene has ", scene.emitters().size(),
@@ -324,9 +398,35 @@ PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uin
     for (uint64_t i = b * PhotonsPerBlock; i < end; ++i)
       tracer.trace(seed, i, out[b].beams, out[b].photons, i < pass.beamPhotonCount);
   };
-  ForkJoinEdges edges;
-  tbb::parallel_for(uint64_t(0), blocks, edges.task(traceBlock));
-  edges.join();
+  auto traceBlocks = [&](uint64_t first, uint64_t last) {
+    ForkJoinEdges edges;
+    tbb::parallel_for(first, last, edges.task(traceBlock));
+    edges.join();
+  };
+  // Under mpirun each rank traces a contiguous share of the blocks and the
+  // ranks exchange them (photons are seeded by index and concatenated in
+  // block order, so every rank then holds what one process traces).
+  TileDistribution* job = tileDistribution();
+  const uint64_t ranks = job ? uint64_t(job->ranks()) : 1, rank = job ? uint64_t(job->rank()) : 0;
+  if (ranks > 1) {
+    const uint64_t first = blocks * rank / ranks, last = blocks * (rank + 1) / ranks;
+    traceBlocks(first, last);
+    std::vector<Beam> beams;
+    std::vector<SurfacePhoton> photons;
+    for (uint64_t b = first; b < last; ++b) {
+      beams.insert(beams.end(), out[b].beams.begin(), out[b].beams.end());
+      photons.insert(photons.end(), out[b].photons.begin(), out[b].photons.end());
+    }
+    if (exchangePhotons(scene, *job, beams, photons, pass)) {
+      pass.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return pass;
+    }
+    // A beam in a medium the exchange cannot name: every rank traces the others' blocks too.
+    traceBlocks(0, first);
+    traceBlocks(last, blocks);
+  } else {
+    traceBlocks(0, blocks);
+  }
   size_t beamCount = 0, photonCount = 0;
   for (const Block& b : out) beamCount += b.beams.size(), photonCount += b.photons.size();
   pass.beams.reserve(beamCount);

@@ -40,6 +40,7 @@
 namespace femto {
 class Scene;
 class Sampler;
+class TileDistribution;
 struct MediumSample;
 struct SurfaceInteraction;
 }  // namespace femto
@@ -113,5 +114,12 @@ class PhotonTracer {
 
 /// All photons of one pass (settings.photonCount), traced in parallel.
 PhotonPass tracePhotonPass(const Scene& scene, const BeamSettings& settings, uint64_t seed, double horizon);
+
+/// Under mpirun: every rank's traced `beams` and `photons` (its share of the
+/// pass's blocks), exchanged and appended to `pass` in rank order. False
+/// (and nothing appended) when some rank holds a beam in a medium the scene's
+/// list does not name: then every rank traces every block itself.
+bool exchangePhotons(const Scene& scene, TileDistribution& job, const std::vector<Beam>& beams,
+                     const std::vector<SurfacePhoton>& photons, PhotonPass& pass);
 
 }  // namespace femto::beams

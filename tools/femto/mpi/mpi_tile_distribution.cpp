@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -212,6 +213,26 @@ void MpiTileDistribution::work(TileJob& job) {
     }
     if (!busy) local.waitForFinished(PollInterval);
   }
+}
+
+std::vector<char> MpiTileDistribution::gatherAll(const std::vector<char>& mine) {
+  uint64_t size = mine.size();
+  std::vector<uint64_t> sizes(size_t(size_), 0);
+  check(MPI_Allgather(&size, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, comm_), "gather sizes");
+  std::vector<int> counts(static_cast<size_t>(size_), 0), offsets(static_cast<size_t>(size_), 0);
+  uint64_t total = 0;
+  for (int r = 0; r < size_; ++r) {
+    if (total + sizes[size_t(r)] > uint64_t(std::numeric_limits<int>::max()))
+      throw Error(str("the ranks' photons exceed 2 GiB in one pass (", total + sizes[size_t(r)],
+                      " bytes): use fewer photons per pass"));
+    offsets[size_t(r)] = int(total);
+    counts[size_t(r)] = int(sizes[size_t(r)]);
+    total += sizes[size_t(r)];
+  }
+  std::vector<char> all(total);
+  check(MPI_Allgatherv(mine.data(), int(size), MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, comm_),
+        "gather");
+  return all;
 }
 
 }  // namespace femto::cli

@@ -24,6 +24,9 @@ class MpiTileDistribution final : public TileDistribution {
  public:
   explicit MpiTileDistribution(MPI_Comm comm);
   RenderStats run(TileJob& job) override;
+  int rank() const override { return rank_; }
+  int ranks() const override { return size_; }
+  std::vector<char> gatherAll(const std::vector<char>& mine) override;
 
  private:
   RenderStats coordinate(TileJob& job);

@@ -58,6 +58,13 @@ class TileDistribution {
   /// tiles begun, a prefix of that order); the others consume nothing. Every
   /// process returns the statistics of the whole job.
   virtual RenderStats run(TileJob& job) = 0;
+  /// This process's rank among ranks() (for work split by index, as photon
+  /// passes are: every rank traces its share and gatherAll exchanges them).
+  virtual int rank() const { return 0; }
+  virtual int ranks() const { return 1; }
+  /// Every rank's `mine`, concatenated in rank order. A collective: every
+  /// rank calls it, in the same order, from the thread that renders.
+  virtual std::vector<char> gatherAll(const std::vector<char>& mine) { return mine; }
 };
 
 /// Installs `distribution` (not owned; null: every tile renders in this
