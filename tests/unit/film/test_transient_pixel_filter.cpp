@@ -92,6 +92,20 @@ double maxRelative(const Bitmap& a, const Bitmap& b) {
   return worst;
 }
 
+/// Per pixel: the volume's bins plus before plus after (the steady image they must add up to).
+Bitmap binsBeforeAndAfter(const Rendered& r) {
+  const int bins = 32;
+  Bitmap total = r.before;
+  for (int y = 0; y < Resolution; ++y)
+    for (int x = 0; x < Resolution; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double s = double(r.before.pixel(x, y)[c]) + double(r.after.pixel(x, y)[c]);
+        for (int b = 0; b < bins; ++b) s += r.volume[((size_t(y) * Resolution + x) * bins + b) * 3 + c];
+        total.pixel(x, y)[c] = float(s);
+      }
+  return total;
+}
+
 }  // namespace
 
 class TransientPixelFilter : public ::testing::TestWithParam<const char*> {};
@@ -107,16 +121,7 @@ TEST_P(TransientPixelFilter, SteadyImageEqualsTheHdrFilmRenderOfTheSameSamples) 
 TEST_P(TransientPixelFilter, BinsBeforeAndAfterAddUpToTheSteadyImage) {
   const std::string filter = GetParam();
   Rendered r = renderFog(filter + "-sums", filter, "transient", 2);
-  const int bins = 32;
-  Bitmap total = r.before;
-  for (int y = 0; y < Resolution; ++y)
-    for (int x = 0; x < Resolution; ++x)
-      for (int c = 0; c < 3; ++c) {
-        double s = double(r.before.pixel(x, y)[c]) + double(r.after.pixel(x, y)[c]);
-        for (int b = 0; b < bins; ++b) s += r.volume[((size_t(y) * Resolution + x) * bins + b) * 3 + c];
-        total.pixel(x, y)[c] = float(s);
-      }
-  EXPECT_LT(maxRelative(total, r.steady), 1e-4) << filter;
+  EXPECT_LT(maxRelative(binsBeforeAndAfter(r), r.steady), 1e-4) << filter;
 }
 
 TEST_P(TransientPixelFilter, SameBitsForOneAndTwoThreads) {
@@ -135,14 +140,5 @@ TEST(TransientPixelFilterBeams, PassesWithAGaussianFilterAddUpAndRepeat) {
   Rendered one = renderFog("beams-t1", "gaussian", "transient", 1, "transient_beams");
   Rendered two = renderFog("beams-t2", "gaussian", "transient", 2, "transient_beams");
   EXPECT_TRUE(one.volumeBytes == two.volumeBytes);
-  const int bins = 32;
-  Bitmap total = one.before;
-  for (int y = 0; y < Resolution; ++y)
-    for (int x = 0; x < Resolution; ++x)
-      for (int c = 0; c < 3; ++c) {
-        double s = double(one.before.pixel(x, y)[c]) + double(one.after.pixel(x, y)[c]);
-        for (int b = 0; b < bins; ++b) s += one.volume[((size_t(y) * Resolution + x) * bins + b) * 3 + c];
-        total.pixel(x, y)[c] = float(s);
-      }
-  EXPECT_LT(maxRelative(total, one.steady), 1e-4);
+  EXPECT_LT(maxRelative(binsBeforeAndAfter(one), one.steady), 1e-4);
 }
