@@ -40,6 +40,13 @@ AimedLaser::AimedLaser(const Emitter& emitter, const std::optional<Point3f>& ori
   }
 }
 
+AimedLaser::AimedLaser(const Emitter& emitter) : emitter_(&emitter) {
+  Point3f position(0.0f);
+  emitter.deltaPosition(position);
+  position_ = origin_ = position;
+  if (auto* oriented = dynamic_cast<const OrientedPointEmitter*>(&emitter)) aimed_ = own_ = frameOf(oriented->toWorld());
+}
+
 Color3f AimedLaser::incident(const Point3f& ref, DirectionSample& ds) const {
   Point3f turned = position_ + own_.toWorld(aimed_.toLocal(ref - origin_));
   DirectionSample own;

@@ -18,6 +18,8 @@ class AimedLaser {
   /// `emitter` at `origin` (its own position when none is given), aimed at
   /// `target`. Lights that are not oriented (a point light) are only moved.
   AimedLaser(const Emitter& emitter, const std::optional<Point3f>& origin, const Point3f& target);
+  /// `emitter` as the scene places it (an ordinary camera's NLOS scene).
+  explicit AimedLaser(const Emitter& emitter);
 
   const Emitter& emitter() const { return *emitter_; }
   const Point3f& origin() const { return origin_; }

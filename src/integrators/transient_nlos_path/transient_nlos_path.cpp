@@ -1,7 +1,11 @@
 // transient_nlos_path: mitransient's path tracer for non-line-of-sight (NLOS)
 // captures (Royo et al., "Non-line-of-sight transient rendering", Computers &
-// Graphics 107, 2022). It renders with an nlos_capture_meter: each camera
-// ray runs from the sensor to a point on the relay wall; from there paths
+// Graphics 107, 2022). It renders with an nlos_capture_meter (each camera
+// ray runs from the sensor to a point on the relay wall) or with any camera
+// that sees the wall, the laser then a projector the scene places, as
+// mitransient's NLOS example has it (every contribution keeps its first and
+// last legs, and every shape is hidden geometry: there is no relay wall to
+// tell apart); from the wall paths
 // bounce into the hidden scene and back, lit only by the laser (a projector
 // with a tiny fov aimed at a wall point, aimed_laser.h). Every contribution is
 // recorded at its exact optical path length with the laser's pulse, as
@@ -27,6 +31,7 @@
 // | nlos_hidden_geometry_sampling | boolean | false | sample directions toward the hidden geometry        | -    |
 // | nlos_hidden_geometry_sampling_do_rroulette | boolean | false | choose hidden-geometry or BSDF sampling at random (1/2 each) | - |
 // | nlos_hidden_geometry_sampling_includes_relay_wall | boolean | false | the relay wall counts as hidden geometry | - |
+// | account_first_and_last_bounces | boolean | true | through a camera: keep the camera-to-wall and laser-to-wall legs in the OPL (false removes both; with a capture meter, give it there) | - |
 // | temporal_filter      | string  | ""      | the film's time filter: "" (the film's own), "box", "gaussian" | - |
 // | gaussian_stddev      | float   | 2       | its standard deviation                                      | bins |
 // | block_size           | integer | 0       | mitransient's tile size: accepted, ignored (femto picks its tiles) | - |
@@ -34,6 +39,7 @@
 #include <cmath>
 
 #include <femto/core/plugin.h>
+#include <femto/lights/oriented_point_emitter.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/nlos_sensor.h>
 #include <femto/render/path_depth.h>
@@ -80,6 +86,7 @@ class TransientNlosPath final : public TransientIntegrator {
     hiddenSampling_ = props.getBool("nlos_hidden_geometry_sampling", false);
     hiddenRoulette_ = props.getBool("nlos_hidden_geometry_sampling_do_rroulette", false) && hiddenSampling_;
     hiddenIncludesWall_ = props.getBool("nlos_hidden_geometry_sampling_includes_relay_wall", false) && hiddenSampling_;
+    if (props.has("account_first_and_last_bounces")) keepLegs_ = props.getBool("account_first_and_last_bounces");
     readTemporalFilter(props);
     props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
   }
@@ -90,7 +97,11 @@ class TransientNlosPath final : public TransientIntegrator {
   /// Checks the set-up once, before any tile runs, so a wrong scene fails
   /// with one message instead of rendering black.
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
-    const NlosSensor& sensor = nlosSensor(scene);
+    if (!dynamic_cast<const NlosSensor*>(&scene.sensor())) return renderThroughCamera(scene, options);
+    if (keepLegs_)
+      throw Error(str(toString(), ": account_first_and_last_bounces is the nlos_capture_meter's parameter when "
+                                  "the scene has one: give it there"));
+    const NlosSensor& sensor = *dynamic_cast<const NlosSensor*>(&scene.sensor());
     const Emitter& emitter = laserOf(scene, sensor);
     if (!emitter.isDelta())
       throw Error(str(toString(), ": the laser must be a light at a point (a projector with a small fov), not ",
@@ -106,17 +117,28 @@ class TransientNlosPath final : public TransientIntegrator {
   }
 
   void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
+    if (depth_.maxDepth == 0) return;
     const NlosSensor* sensor = dynamic_cast<const NlosSensor*>(&scene.sensor());
-    if (!sensor || depth_.maxDepth == 0) return;
     NlosPath path;
     if (!scene.rayIntersect(cameraRay, path.si)) return;
     path.opl = path.si.t;
-    const Point3f target = sensor->laserTarget(path.si.p);
-    AimedLaser laser(laserOf(scene, *sensor), sensor->laserOrigin(), target);
-    double shift = sensor->accountsFirstAndLastBounces() ? 0.0 : path.si.t + distance(laser.origin(), target);
-    Capture capture{laser, shift, recorder};
+    std::optional<AimedLaser> aimed;
+    double shift = 0.0;
+    if (sensor) {
+      const Point3f target = sensor->laserTarget(path.si.p);
+      aimed.emplace(laserOf(scene, *sensor), sensor->laserOrigin(), target);
+      if (!sensor->accountsFirstAndLastBounces()) shift = path.si.t + distance(aimed->origin(), target);
+    } else {
+      aimed.emplace(onlyLaser(scene));  // through a camera: the projector as the scene places it
+      if (keepLegs_ && !*keepLegs_) {
+        // The laser's leg ends where its axis meets the scene (mitransient's lit point).
+        std::optional<Point3f> lit = litPoint(scene, aimed->emitter());
+        if (lit) shift = path.si.t + distance(aimed->origin(), *lit);
+      }
+    }
+    Capture capture{*aimed, shift, recorder};
     std::optional<HiddenGeometry> hidden;
-    if (hiddenSampling_) hidden.emplace(scene, &sensor->relayWall(), hiddenIncludesWall_);
+    if (hiddenSampling_) hidden.emplace(scene, sensor ? &sensor->relayWall() : nullptr, hiddenIncludesWall_);
 
     while (true) {
       const BSDF* bsdf = path.si.bsdf();
@@ -147,14 +169,38 @@ class TransientNlosPath final : public TransientIntegrator {
   }
 
  private:
-  static const NlosSensor& nlosSensor(const Scene& scene) {
-    auto* sensor = dynamic_cast<const NlosSensor*>(&scene.sensor());
-    if (!sensor)
-      throw Error(
-          str("transient_nlos_path renders non-line-of-sight captures: nest an nlos_capture_meter in the "
-              "relay wall (the scene's sensor is ",
-              scene.sensor().toString(), ")"));
-    return *sensor;
+  /// Through an ordinary camera: the scene's only emitter is the laser.
+  static const Emitter& onlyLaser(const Scene& scene) {
+    if (scene.emitters().size() != 1)
+      throw Error(str("transient_nlos_path: an NLOS scene has exactly one emitter, the laser; this one has ",
+                      scene.emitters().size()));
+    return *scene.emitters().front();
+  }
+
+  /// Where a projector's axis meets the scene (none for other lights or when it misses).
+  static std::optional<Point3f> litPoint(const Scene& scene, const Emitter& emitter) {
+    auto* oriented = dynamic_cast<const OrientedPointEmitter*>(&emitter);
+    if (!oriented) return std::nullopt;
+    Point3f origin(0.0f);
+    emitter.deltaPosition(origin);
+    SurfaceInteraction lit;
+    if (!scene.rayIntersect(Ray(origin, normalize(oriented->toWorld().vector(Vec3f(0, 0, 1)))), lit)) return std::nullopt;
+    return lit.p;
+  }
+
+  /// The checks of render() for a scene seen through an ordinary camera: one
+  /// delta emitter, pointed at the scene (mitransient finds the lit point
+  /// along the projector's axis the same way).
+  RenderStats renderThroughCamera(const Scene& scene, const RenderOptions& options) const {
+    const Emitter& emitter = onlyLaser(scene);
+    if (!emitter.isDelta())
+      throw Error(str(toString(), ": the laser must be a light at a point (a projector with a small fov), not ",
+                      emitter.toString()));
+    if (dynamic_cast<const OrientedPointEmitter*>(&emitter) && !litPoint(scene, emitter))
+      throw Error(str(toString(), ": the laser ", emitter.toString(), " is not pointing at the scene"));
+    if (hiddenSampling_ && HiddenGeometry(scene, nullptr, true).empty())
+      throw Error(str(toString(), ": nlos_hidden_geometry_sampling is on but the scene has no geometry with area"));
+    return TransientIntegrator::render(scene, options);
   }
 
   /// The laser: the emitter nested in the capture meter, or the scene's only one.
@@ -265,6 +311,7 @@ class TransientNlosPath final : public TransientIntegrator {
   bool hiddenSampling_ = false;
   bool hiddenRoulette_ = false;
   bool hiddenIncludesWall_ = false;
+  std::optional<bool> keepLegs_;  // account_first_and_last_bounces, through a camera
 };
 
 }  // namespace femto
