@@ -62,6 +62,43 @@ def load_capture(path, with_info=False):
     return capture + (info,) if with_info else capture
 
 
+def load_phasor_capture(path):
+    """A phasor-film capture (phasor_hdr_film: <stem>.npy of shape (height,
+    width, frequencies, 2, 3)) as Z[j, i, f] (channels summed), its
+    frequencies, start_opl and sidecar fields."""
+    x = np.load(path)
+    sidecar = os.path.splitext(path)[0] + ".json"
+    if not os.path.exists(sidecar):
+        sys.exit(f"{path}: its frequencies are in {sidecar}, which is missing")
+    with open(sidecar) as f:
+        info = json.load(f)
+    z = (x[..., 0, :].astype(np.float64) + 1j * x[..., 1, :].astype(np.float64)).sum(axis=3)
+    return z, np.array(info["frequencies"], dtype=np.float64), float(info["start_opl"]), info
+
+
+def phasor_from_film(z, frequencies, start, points, voxels_xyz, lit, legs=None):
+    """The phasor method from a phasor film's coefficients: the virtual wave's
+    band is the film's frequencies, so the back-projection at the voxels'
+    arrival times is a sum over them, V(v) = sum_w sum_f Z_f(w)
+    exp(2 pi i f (t(v, w) - start)) (Z_f(w) = sum v exp(-2 pi i f (tau -
+    start)), the film's sign); |V|. `legs` (sensor, laser origins): remove
+    the first and last legs, a phase shift exp(2 pi i f (legs))."""
+    volume = np.zeros(voxels_xyz.shape[:3], dtype=np.complex128)
+    to_lit = None if lit is None else np.linalg.norm(voxels_xyz - lit, axis=-1)
+    for j in range(z.shape[0]):
+        for i in range(z.shape[1]):
+            w = points[j, i]
+            d = np.linalg.norm(voxels_xyz - w, axis=-1)
+            t = 2.0 * d if to_lit is None else d + to_lit
+            coefficients = z[j, i]
+            if legs is not None:
+                target = w if lit is None else lit
+                shift = np.linalg.norm(legs[0] - w) + np.linalg.norm(legs[1] - target)
+                coefficients = coefficients * np.exp(2j * np.pi * frequencies * shift)
+            volume += np.exp(2j * np.pi * (t[..., None] - start) * frequencies) @ coefficients
+    return np.abs(volume)
+
+
 def capture_geometry(path, info):
     """From a femto capture's sidecar: the watched points [j, i, xyz] (or
     None), the lit point (None: confocal), and (sensor, laser) origins when
@@ -285,7 +322,15 @@ def main(argv=None):
     p.add_argument("--wavelength", type=float, default=None, help="phasor: the virtual wavelength (OPL units)")
     p.add_argument("-o", "--output", required=True, help="output prefix: PREFIX.npy and PREFIX.png")
     args = p.parse_args(argv)
-    capture, start, width, info = load_capture(args.capture, with_info=True)
+    phasor_film = np.load(args.capture, mmap_mode="r").ndim == 5
+    if phasor_film:
+        z, frequencies, start, info = load_phasor_capture(args.capture)
+        if args.method != "phasor":
+            p.error("a phasor-film capture reconstructs with --method phasor")
+        capture = np.zeros(z.shape[:2] + (1,))  # the wall's shape, for the geometry below
+        width = 1.0
+    else:
+        capture, start, width, info = load_capture(args.capture, with_info=True)
     # What the command line gives wins over the sidecar's geometry.
     side_points, side_lit, side_legs = capture_geometry(args.capture, info)
     if args.wall_center is not None or args.wall_half is not None or side_points is None:
@@ -298,13 +343,16 @@ def main(argv=None):
     if (args.sensor_origin is None) != (args.laser_origin is None):
         p.error("give both --sensor-origin and --laser-origin, or neither")
     legs = (args.sensor_origin, args.laser_origin) if args.sensor_origin is not None else side_legs
-    if legs is not None:
+    if legs is not None and not phasor_film:
         capture = remove_legs(capture, start, width, points, legs[0], legs[1], lit)
     sensor = np.array(info["nlos_sensor_origin"]) if "nlos_sensor_origin" in info else None
     box = args.box if args.box is not None else default_box(points, sensor)
     if args.method == "fk" and lit is not None:
         p.error("--method fk needs a confocal capture")
-    volume = reconstruct(capture, start, width, points, box, args.voxels, lit, args.method, args.wavelength)
+    if phasor_film:
+        volume = phasor_from_film(z, frequencies, start, points, voxel_centers(box, args.voxels), lit, legs)
+    else:
+        volume = reconstruct(capture, start, width, points, box, args.voxels, lit, args.method, args.wavelength)
     np.save(args.output + ".npy", volume.astype(np.float32))
     max_projection_png(volume, args.output + ".png")
     nz, ny, nx = volume.shape

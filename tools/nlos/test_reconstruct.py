@@ -132,6 +132,52 @@ class HiddenLetter(unittest.TestCase):
                 self.assertLessEqual(abs(at[2] - DEPTH), voxel[2], f"depth {at[2]}")
                 self.assertLessEqual(letter_distance(at[0], at[1]), np.linalg.norm(voxel[:2]), f"at {at}")
 
+    def test_phasor_film_capture_shows_the_letter(self):
+        # The same confocal capture into mitransient's phasor film (a band of
+        # frequencies around the phasor method's default wavelength, 2 / RES
+        # x 2): reconstruct.py reads it directly and finds the T as the
+        # time-domain methods do.
+        scene = os.path.join(self.tmp.name, "letter_phasor.xml")
+        with open(os.path.join(HERE, "hidden_letter.xml")) as f:
+            text = f.read()
+        start = text.index('<film type="transient_hdr_film">')
+        end = text.index("</film>", start) + len("</film>")
+        wavelength = 2.0 * 2.0 * WALL_HALF / RES
+        film = ('<film type="phasor_hdr_film"><integer name="width" value="$res"/><integer name="height" value="$res"/>'
+                '<integer name="temporal_bins" value="$bins"/><float name="bin_width_opl" value="0.005"/>'
+                f'<float name="start_opl" value="1.0"/><float name="wl_mean" value="{wavelength}"/>'
+                f'<float name="wl_sigma" value="{2 * wavelength}"/><rfilter type="box"/></film>')
+        with open(scene, "w") as f:
+            f.write(text[:start] + film + text[end:])
+        out = os.path.join(self.tmp.name, "phasor.exr")
+        subprocess.run([self.femto, "render", scene, "--strict", "--no-progress", "-t", "2", "-p", self.plugins,
+                        "-D", f"res={RES}", "-D", "spp=32", "-o", out], check=True, capture_output=True)
+        z, frequencies, start_opl, info = reconstruct.load_phasor_capture(out[:-4] + ".npy")
+        self.assertGreater(len(frequencies), 2)
+        points = reconstruct.wall_points(RES, RES, np.zeros(3), np.full(2, WALL_HALF))
+        volume = reconstruct.phasor_from_film(z, frequencies, start_opl, points,
+                                              reconstruct.voxel_centers(BOX, VOXELS), None)
+        voxel = (BOX[3:] - BOX[:3]) / VOXELS
+        xs = BOX[0] + (np.arange(VOXELS[0]) + 0.5) * voxel[0]
+        ys = BOX[1] + (np.arange(VOXELS[1]) + 0.5) * voxel[1]
+        x, y = np.meshgrid(xs, ys)
+        distance = letter_distance(x, y)
+        image = volume.max(axis=0)
+        detected = image >= 0.5 * image.max()
+        reach = wavelength * np.hypot(WALL_HALF, DEPTH) / (2.0 * WALL_HALF) + 0.5 * np.linalg.norm(voxel[:2])
+        precision = (detected & (distance <= reach)).sum() / detected.sum()
+        recall = (detected & (distance == 0)).sum() / (distance == 0).sum()
+        self.assertGreaterEqual(precision, 0.9, f"detections off the letter (reach {reach:.3f})")
+        self.assertGreaterEqual(recall, 0.7, "the letter is not found")
+        z_index = np.unravel_index(volume.argmax(), volume.shape)[0]
+        self.assertLessEqual(abs(BOX[2] + (z_index + 0.5) * voxel[2] - DEPTH), voxel[2])
+        # The command line reads it too (geometry from its sidecar).
+        prefix = os.path.join(self.tmp.name, "rec_phasor")
+        subprocess.run([sys.executable, os.path.join(HERE, "reconstruct.py"), out[:-4] + ".npy", "--method", "phasor",
+                        "--box=" + ",".join(map(str, BOX)), "--voxels", "8,6,4", "-o", prefix], check=True,
+                       capture_output=True, text=True)
+        self.assertEqual(np.load(prefix + ".npy").shape, (4, 6, 8))
+
     def test_confocal_capture_shows_the_letter(self):
         self.check_letter("True")
 

@@ -8,6 +8,7 @@
 #include <femto/base/error.h>
 #include <femto/core/log.h>
 #include <femto/film/npy_volume.h>
+#include <femto/film/transient_render.h>
 #include <femto/image/write_atomically.inl>
 #include <femto/loop/render_loop.h>
 #include <femto/math/constants.h>
@@ -180,6 +181,8 @@ RenderStats renderPhasor(const Scene& scene, const PhasorFilm& film, const Rende
       }
     if (!out) throw Error(str("cannot write \"", tmp.string(), "\""));
   });
+  // An NLOS capture's geometry, as a transient film's sidecar holds it.
+  const auto nlos = describeNlosCapture(scene, film, fs::path(base.string() + ".npy"));
   writeAtomically(fs::path(base.string() + ".json"), [&](const fs::path& tmp) {
     std::ofstream out(tmp);
     out << "{\n  \"film\": \"phasor_hdr_film\",\n  \"layout\": \"height, width, frequency, (real, imaginary), rgb\",\n"
@@ -193,7 +196,9 @@ RenderStats renderPhasor(const Scene& scene, const PhasorFilm& film, const Rende
       const double f = film.frequencies()[k];
       out << (k ? ", " : "") << (f != 0.0 ? number(1.0 / f) : std::string("null"));
     }
-    out << "],\n  \"passes\": " << total.passes << ",\n  \"seed\": " << options.seed << "\n}\n";
+    out << "],\n  \"passes\": " << total.passes << ",\n  \"seed\": " << options.seed;
+    for (const auto& [key, value] : nlos) out << ",\n  \"" << key << "\": " << value;
+    out << "\n}\n";
     if (!out) throw Error(str("cannot write \"", tmp.string(), "\""));
   });
   logInfo("phasor film: ", frequencies, " frequencies written to ", base.string(), ".npy");

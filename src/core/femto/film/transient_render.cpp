@@ -39,38 +39,6 @@ void checkEmitterPulses(const Scene& scene, const TransientFilm& film) {
                       film.timeFilter().name(), "\": the pulse already smooths in time (widen it instead)"));
 }
 
-/// An NLOS capture's geometry beside its volume, so a reconstruction needs
-/// only the capture (tools/nlos/reconstruct.py): sidecar fields and
-/// <stem>_wall.npy, the watched point of every pixel (height, width, xyz).
-void describeCapture(const Scene& scene, const TransientFilm& film, TransientOutput& output) {
-  const auto* nlos = dynamic_cast<const NlosSensor*>(&scene.sensor());
-  const std::filesystem::path volume = output.volumePath();
-  if (!nlos || volume.empty()) return;
-  auto point = [](const Point3f& p) { return str("[", double(p.x), ", ", double(p.y), ", ", double(p.z), "]"); };
-  const Point2i crop = film.cropSize(), offset = film.cropOffset();
-  std::vector<std::pair<std::string, std::string>> extra = {
-      {"nlos_confocal", nlos->confocal() ? "true" : "false"},
-      {"nlos_legs", nlos->accountsFirstAndLastBounces() ? "\"kept\"" : "\"removed\""},
-      {"nlos_sensor_origin", point(nlos->sensorOrigin())}};
-  if (std::optional<Point3f> origin = nlos->laserOrigin()) extra.push_back({"nlos_laser_origin", point(*origin)});
-  if (!nlos->confocal()) extra.push_back({"nlos_laser_target", point(nlos->laserTarget(nlos->watchedPoint(0, 0)))});
-  std::filesystem::path wall = volume.parent_path() / (volume.stem().string() + "_wall.npy");
-  extra.push_back({"nlos_wall_points", str("\"", wall.filename().string(), "\"")});
-  output.setSidecarExtra(std::move(extra));
-  writeAtomically(wall, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    const std::vector<char> header = npyHeader({crop.y, crop.x, 3});
-    out.write(header.data(), std::streamsize(header.size()));
-    for (int j = 0; j < crop.y; ++j)
-      for (int i = 0; i < crop.x; ++i) {
-        const Point3f p = nlos->watchedPoint(offset.x + i, offset.y + j);
-        const float xyz[3] = {p.x, p.y, p.z};
-        out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
-      }
-    if (!out) throw Error(str("cannot write \"", tmp.string(), "\""));
-  });
-}
-
 RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const RenderOptions& options, int passes,
                             const TransientPassFunction& passIntegrator) {
   checkEmitterPulses(scene, film);
@@ -123,7 +91,7 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
                       options.timeLimit,
                       options.timeLimit > 0.0 ? clockName(options.timeClock) : "",
                       stats.timeLimitReached};
-  describeCapture(scene, film, output);
+  output.setSidecarExtra(describeNlosCapture(scene, film, output.volumePath()));
   // Frames are written in parallel: with the thread count the user asked for.
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
@@ -136,6 +104,38 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
 }
 
 }  // namespace
+
+/// An NLOS capture's geometry beside its volume, so a reconstruction needs
+/// only the capture (tools/nlos/reconstruct.py): sidecar fields and
+/// <stem>_wall.npy, the watched point of every pixel (height, width, xyz).
+std::vector<std::pair<std::string, std::string>> describeNlosCapture(const Scene& scene, const Film& film,
+                                                                   const std::filesystem::path& volume) {
+  const auto* nlos = dynamic_cast<const NlosSensor*>(&scene.sensor());
+  if (!nlos || volume.empty()) return {};
+  auto point = [](const Point3f& p) { return str("[", double(p.x), ", ", double(p.y), ", ", double(p.z), "]"); };
+  const Point2i crop = film.cropSize(), offset = film.cropOffset();
+  std::vector<std::pair<std::string, std::string>> extra = {
+      {"nlos_confocal", nlos->confocal() ? "true" : "false"},
+      {"nlos_legs", nlos->accountsFirstAndLastBounces() ? "\"kept\"" : "\"removed\""},
+      {"nlos_sensor_origin", point(nlos->sensorOrigin())}};
+  if (std::optional<Point3f> origin = nlos->laserOrigin()) extra.push_back({"nlos_laser_origin", point(*origin)});
+  if (!nlos->confocal()) extra.push_back({"nlos_laser_target", point(nlos->laserTarget(nlos->watchedPoint(0, 0)))});
+  std::filesystem::path wall = volume.parent_path() / (volume.stem().string() + "_wall.npy");
+  extra.push_back({"nlos_wall_points", str("\"", wall.filename().string(), "\"")});
+  writeAtomically(wall, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    const std::vector<char> header = npyHeader({crop.y, crop.x, 3});
+    out.write(header.data(), std::streamsize(header.size()));
+    for (int j = 0; j < crop.y; ++j)
+      for (int i = 0; i < crop.x; ++i) {
+        const Point3f p = nlos->watchedPoint(offset.x + i, offset.y + j);
+        const float xyz[3] = {p.x, p.y, p.z};
+        out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+      }
+    if (!out) throw Error(str("cannot write \"", tmp.string(), "\""));
+  });
+  return extra;
+}
 
 RenderStats renderTransientPasses(const Scene& scene, const RenderOptions& options, int passes,
                                   const TransientPassFunction& passIntegrator) {
