@@ -8,11 +8,14 @@
 
 #include <femto/core/plugin.h>
 #include <femto/film/transient_film.h>
+#include <femto/render/emitter.h>
 #include <femto/render/film.h>
 #include <femto/render/integrator.h>
+#include <femto/render/medium.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/sensor.h>
+#include <femto/render/shape.h>
 #include <femto/xml/loader.h>
 
 #include "bindings.h"
@@ -72,6 +75,33 @@ py::dict outputPaths(const Scene& scene, const std::filesystem::path& output) {
   return d;
 }
 
+/// The objects whose parameters may change after loading, by the names
+/// Scene.set takes: "film", "sampler", and every object with an id (emitters,
+/// media of shapes, emitters and the sensor).
+std::vector<std::pair<std::string, Object*>> editableObjects(Scene& scene) {
+  std::vector<std::pair<std::string, Object*>> objects;
+  auto add = [&](const std::string& name, const Object* object) {
+    if (!object || name.empty()) return;
+    for (const auto& [n, o] : objects)
+      if (o == object || n == name) return;
+    if (!object->editableParameters().empty()) objects.emplace_back(name, const_cast<Object*>(object));
+  };
+  const Sensor& sensor = scene.sensor();
+  add("film", &sensor.film());
+  add("sampler", &sensor.sampler());
+  add(sensor.medium() ? sensor.medium()->id() : "", sensor.medium());
+  for (const auto& e : scene.emitters()) {
+    add(e->id(), e.get());
+    add(e->medium() ? e->medium()->id() : "", e->medium());
+  }
+  for (const auto& s : scene.shapes()) {
+    add(s->interiorMedium() ? s->interiorMedium()->id() : "", s->interiorMedium());
+    add(s->exteriorMedium() ? s->exteriorMedium()->id() : "", s->exteriorMedium());
+    if (const Emitter* e = s->emitter()) add(e->id().empty() ? s->id() : e->id(), e);
+  }
+  return objects;
+}
+
 py::list plugins() {
   std::vector<const PluginDescriptor*> found = PluginManager::instance().discoverAll();
   std::sort(found.begin(), found.end(), [](const PluginDescriptor* a, const PluginDescriptor* b) {
@@ -90,6 +120,27 @@ void bindScene(py::module_& m) {
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A loaded scene (use femto.load_file / femto.load_string)")
       .def("describe", &describe)
       .def("output_paths", &outputPaths, py::arg("output"))
+      .def("parameters",
+           [](Scene& scene) {
+             py::list names;
+             for (const auto& [name, object] : editableObjects(scene))
+               for (const std::string& p : object->editableParameters()) names.append(name + "." + p);
+             return names;
+           })
+      .def(
+          "set_parameter",
+          [](Scene& scene, const std::string& key, const std::vector<double>& value) {
+            const size_t dot = key.rfind('.');
+            if (dot == std::string::npos)
+              throw Error(str("\"", key, "\": name a parameter as OBJECT.PARAMETER (scene.parameters() lists them)"));
+            const std::string name = key.substr(0, dot), parameter = key.substr(dot + 1);
+            for (const auto& [n, object] : editableObjects(scene))
+              if (n == name) return object->setParameter(parameter, value);
+            std::string known;
+            for (const auto& [n, object] : editableObjects(scene)) known += (known.empty() ? "" : ", ") + n;
+            throw Error(str("\"", key, "\": no object \"", name, "\" with parameters that can change (", known, ")"));
+          },
+          py::arg("key"), py::arg("value"))
       .def("__repr__", [](const Scene& s) { return "<femto scene: " + s.integrator().toString() + ">"; });
   m.def(
       "load_file",

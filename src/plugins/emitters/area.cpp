@@ -48,6 +48,11 @@ class AreaEmitter final : public Emitter {
   }
 
   Color3f power() const override { return radiance_ * (Pi * shape().surfaceArea()); }
+  std::vector<std::string> editableParameters() const override { return {"radiance"}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override {
+    if (name != "radiance") return Emitter::setParameter(name, value);
+    radiance_ = editableColor(toString(), name, value);
+  }
 
   std::string toString() const override { return str("AreaEmitter[radiance=", radiance_, "]"); }
 

@@ -33,9 +33,21 @@ float scatterBefore(float sigma, float t) { return sigma > 0.0f ? -std::expm1(-s
 class HomogeneousMedium final : public Medium {
  public:
   explicit HomogeneousMedium(const Properties& props) : Medium(props) {
-    MediumCoefficients c = readMediumCoefficients(props);
-    sigmaT_ = c.scaledSigmaT();
-    sigmaS_ = c.sigmaS();
+    coefficients_ = readMediumCoefficients(props);
+    sigmaT_ = coefficients_.scaledSigmaT();
+    sigmaS_ = coefficients_.sigmaS();
+  }
+
+  std::vector<std::string> editableParameters() const override { return {"sigma_t", "albedo"}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override {
+    if (name == "sigma_t")
+      coefficients_.sigmaT = editableColor(toString(), name, value);
+    else if (name == "albedo")
+      coefficients_.albedo = editableColor(toString(), name, value);
+    else
+      return Medium::setParameter(name, value);
+    sigmaT_ = coefficients_.scaledSigmaT();
+    sigmaS_ = coefficients_.sigmaS();
   }
 
   MediumSample sampleDistance(const Ray& ray, float tMax, Sampler& sampler) const override {
@@ -121,6 +133,7 @@ class HomogeneousMedium final : public Medium {
     return {transmit(sigmaT_.r, t), transmit(sigmaT_.g, t), transmit(sigmaT_.b, t)};
   }
 
+  MediumCoefficients coefficients_;
   Color3f sigmaT_, sigmaS_;
 };
 

@@ -23,24 +23,47 @@ def _define_text(value):
 
 
 class Scene:
-    """A loaded scene. render(spp=N) with another sample count reloads the scene
-    with that count (the CLI's --spp), so it renders exactly what
-    `femto render --spp N` renders."""
+    """A loaded scene. set() changes a parameter without reloading (parameters()
+    lists what can change). render(spp=N) renders exactly what `femto render
+    --spp N` renders: in place where the sampler's sample_count can change,
+    otherwise from the scene loaded again with that count (edits replayed)."""
 
     def __init__(self, loader, spp, native):
         self._loader = loader  # spp -> the native scene loaded with that sample count
         self._scenes = {spp: native}
         self._default_spp = spp
+        self._edits = {}  # key -> value, replayed on scenes loaded later
+        self._own_spp = native.describe()["spp"]
 
     def _native(self, spp):
         if spp not in self._scenes:
-            self._scenes[spp] = self._loader(spp)
+            native = self._loader(spp)
+            for key, value in self._edits.items():
+                native.set_parameter(key, value)
+            self._scenes[spp] = native
         return self._scenes[spp]
+
+    def parameters(self) -> list:
+        """The parameters set() can change, as "object.parameter": "film.start_opl",
+        "sampler.sample_count", and those of objects with an id ("fog.sigma_t",
+        "light.intensity"); docs/python.md lists them."""
+        return list(self._native(self._default_spp).parameters())
+
+    def set(self, key, value):
+        """Change parameter `key` (a name parameters() lists) to `value`: a number,
+        or three for a colour. The next render uses it; nothing is reloaded.
+        Raises SceneError for a name that cannot change or a bad value."""
+        values = [float(v) for v in (value if hasattr(value, "__len__") else [value])]
+        for native in self._scenes.values():
+            native.set_parameter(key, values)
+        self._edits[key] = values
+        if key == "sampler.sample_count":
+            self._own_spp = int(values[0])
 
     @property
     def info(self) -> dict:
         """Film size, crop, sample count, integrator and, for a transient film, its time axis."""
-        return self._native(self._default_spp).describe()
+        return self._native_for(None).describe()
 
     @property
     def time_axis(self):
@@ -84,7 +107,7 @@ class Scene:
         if time_clock not in ("wall", "cpu"):
             raise ValueError(f"time_clock must be 'wall' or 'cpu', got {time_clock!r}")
         limit_seconds = _seconds(time_limit)
-        native = self._native(None if spp is None else int(spp))
+        native = self._native_for(None if spp is None else int(spp))
         limit = DEFAULT_MEMORY_LIMIT if memory_limit is None else int(memory_limit)
         temporary = None
         if output is None:
@@ -105,6 +128,15 @@ class Scene:
             stopped_by.result = result
             raise stopped_by
         return result
+
+
+    def _native_for(self, spp):
+        """The native scene rendering `spp` samples per pixel (None: the scene's own)."""
+        default = self._native(self._default_spp)
+        if "sampler.sample_count" not in default.parameters():
+            return self._native(spp)
+        default.set_parameter("sampler.sample_count", [float(self._own_spp if spp is None else spp)])
+        return default
 
 
 def _seconds(time_limit):

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <femto/base/error.h>
+
 namespace femto {
 namespace {
 constexpr std::array<const char*, 13> Tags = {"scene", "integrator", "sensor", "film", "sampler", "rfilter", "shape",
@@ -14,6 +16,21 @@ std::optional<ObjectKind> kindFromTag(std::string_view tag) {
   for (size_t i = 0; i < Tags.size(); ++i)
     if (tag == Tags[i]) return ObjectKind(i);
   return std::nullopt;
+}
+
+void Object::setParameter(const std::string& name, const std::vector<double>&) {
+  std::string editable;
+  for (const std::string& p : editableParameters()) editable += (editable.empty() ? "" : ", ") + p;
+  throw Error(str(toString(), ": \"", name, "\" cannot change after loading",
+                  editable.empty() ? std::string(" (nothing of it can)") : " (it can change: " + editable + ")"));
+}
+
+Color3f editableColor(const std::string& owner, const std::string& name, const std::vector<double>& value) {
+  if (value.size() != 1 && value.size() != 3)
+    throw Error(str(owner, ": \"", name, "\" takes 1 or 3 numbers, got ", value.size()));
+  Color3f c(float(value[0]), float(value[value.size() == 3 ? 1 : 0]), float(value[value.size() == 3 ? 2 : 0]));
+  if (!c.isValid()) throw Error(str(owner, ": \"", name, "\" must be finite and non-negative"));
+  return c;
 }
 
 std::string Object::toString() const { return std::string(kindTag(kind())) + (id_.empty() ? "" : " id=\"" + id_ + "\""); }

@@ -1,10 +1,14 @@
 #pragma once
-// Base class of everything a scene file can create. Objects are immutable
-// once constructed; per-render mutable state lives in per-thread objects.
+// Base class of everything a scene file can create. Objects do not change
+// while a scene renders (per-render mutable state lives in per-thread
+// objects); between renders a few parameters may (setParameter).
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 #include <string_view>
+
+#include <femto/math/spectrum.h>
 
 namespace femto {
 
@@ -33,12 +37,23 @@ const char* kindTag(ObjectKind kind);
 /// Inverse of kindTag; nullopt for tags that do not create objects.
 std::optional<ObjectKind> kindFromTag(std::string_view tag);
 
+/// A parameter value for setParameter as a colour (1 number: grey), checked
+/// finite and non-negative; errors name `owner` and `name`.
+Color3f editableColor(const std::string& owner, const std::string& name, const std::vector<double>& value);
+
 class Object {
  public:
   virtual ~Object() = default;
   virtual ObjectKind kind() const = 0;
   /// Human-readable summary (parameters), for `femto render --verbose` and tests.
   virtual std::string toString() const;
+  /// Parameters that may change after loading, between renders (Python's
+  /// Scene.set, docs/python.md "Editing a loaded scene"); none by default.
+  virtual std::vector<std::string> editableParameters() const { return {}; }
+  /// Change parameter `name` to `value` (1 number, or 3 for a colour):
+  /// femto::Error naming the object and what it can change otherwise. Not
+  /// thread-safe: never while the scene renders.
+  virtual void setParameter(const std::string& name, const std::vector<double>& value);
   /// The id="" the scene gave this object (empty when none).
   const std::string& id() const { return id_; }
   void setId(std::string id) { id_ = std::move(id); }

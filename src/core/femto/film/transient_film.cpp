@@ -113,6 +113,24 @@ TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& sp
   writeFrames_ = props.getBool("write_frames", false);
 }
 
+void TransientFilm::setParameter(const std::string& name, const std::vector<double>& value) {
+  if (name != "start_opl" && name != "bin_width_opl" && name != "temporal_bins") return Film::setParameter(name, value);
+  if (value.size() != 1 || !std::isfinite(value[0]))
+    throw Error(str(toString(), ": \"", name, "\" takes one finite number"));
+  TimeGrid grid = deposit_.grid();
+  if (name == "start_opl") grid.start = value[0];
+  if (name == "bin_width_opl") {
+    if (!(value[0] > 0.0)) throw Error(str(toString(), ": bin_width_opl must be positive, got ", value[0]));
+    grid.binWidth = value[0];
+  }
+  if (name == "temporal_bins") {
+    if (!(value[0] >= 1.0 && value[0] <= double(1 << 28) && value[0] == std::floor(value[0])))
+      throw Error(str(toString(), ": temporal_bins must be a whole number from 1, got ", value[0]));
+    grid.bins = int(value[0]);
+  }
+  deposit_ = TimeDeposit(grid, deposit_.filter(), deposit_.unboundedHorizon());
+}
+
 void TransientFilm::useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where) {
   const TimeFilter& own = deposit_.filter();
   if (timeFilterGivenAt_.known() && (own.type() != filter.type() || own.width() != filter.width()))

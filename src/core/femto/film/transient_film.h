@@ -53,6 +53,9 @@ class TransientFilm : public Film {
   /// Refused, naming `where`, when the film gave a different filter itself.
   void useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where) override;
   bool timeResolved() const override { return true; }
+  /// The time window: start_opl, bin_width_opl, temporal_bins.
+  std::vector<std::string> editableParameters() const override { return {"start_opl", "bin_width_opl", "temporal_bins"}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override;
 
   const TimeGrid& timeGrid() const { return deposit_.grid(); }
   const TimeFilter& timeFilter() const { return deposit_.filter(); }
