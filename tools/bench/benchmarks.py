@@ -41,6 +41,7 @@ SECTIONS = [
     ("media-suite", "tools/bench/run_media_suite.sh"),
     ("fog-box-beams", "tools/bench/fog_box_beams.py --resolution 64 --seeds 2 --repeats 3"),
     ("mitransient-peer", "tools/bench/mitransient_peer.py"),
+    ("time-splitting", "tools/bench/time_splitting.py"),
     ("time-gating", "tools/bench/time_gating.py"),
     ("beams-pass-split", "tools/bench/beams_pass_split.py --resolution 64 --seeds 2"),
     ("beams-peer", "tools/compare/tof_peer.py --passes 4,16,64 --spp 1 --seeds 3"),

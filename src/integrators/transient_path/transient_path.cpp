@@ -8,6 +8,10 @@
 // light-directed vertex (direction density ~ 1/sin of the angle to the light),
 // whose three-way MIS removes the fireflies of a point light in fog.
 // time_gating samples toward the film's window (DARTS, He et al. 2024).
+// time_splitting: Russian roulette and splitting against the film's time
+// profile, read from a pilot of camera samples (a weight window, as in
+// adjoint-driven roulette and splitting, Vorba and Krivanek 2016, with the
+// bins a path can still reach in place of the pixel's value).
 // Why each strategy and how they combine: docs/design/transient-path.md;
 // what they buy: docs/BENCHMARKS.md, "transient_path sampling". Mitsuba's
 // volpath loads as this integrator; the same source builds mitransient's
@@ -24,6 +28,7 @@
 // | equiangular          | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
 // | light_directions     | boolean | true    | a second next-event vertex per scattering vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | - |
 // | time_gating          | boolean | true    | sample next-event distances toward point lights inside the film's time window, truncate free flights past it (false: every sample independent of the window, as before) | - |
+// | time_splitting       | boolean | true    | transient films: roulette and split paths against the film's time profile (a pilot of 4096 camera samples), so late bins get as many paths as early ones (false: Mitsuba's roulette on the throughput) | - |
 // | before_window_rate   | float   | 0.125   | with time_gating: the share of next-event connections whose light arrives before the window that are made (weighted by its inverse) | - |
 // | skip_before_window   | boolean | false   | with time_gating: before_window_rate = 0 (steady and _before then lack that light) | - |
 // | camera_unwarp        | boolean | false   | mitransient's name for observer_time = false                 | -    |
@@ -37,6 +42,9 @@
 #include <cmath>
 
 #include <femto/core/plugin.h>
+#include <femto/film/transient_film.h>
+#include <femto/film/transient_render.h>
+#include <femto/film/transient_tile.h>
 #include <femto/render/bsdf.h>
 #include <femto/render/emitter.h>
 #include <femto/render/medium.h>
@@ -119,6 +127,36 @@ struct PathState : OpticalPath {
   // The largest refractive index of the scene's media (and 1): light
   // connections arrive at most that times their length after they start.
   float etaMax = 1.0f;
+  // time_splitting: the product of the split factors so far (at most MaxSplitProduct).
+  int splitProduct = 1;
+};
+
+/// time_splitting's weight window: per bin of the film, the level a path's
+/// throughput is compared with there, the mean of the profile over the bins
+/// from there to the window's end (what the path can still reach) over its
+/// mean over the whole window, clamped to [1/64, 1] (never more roulette than
+/// Mitsuba's rule; at most 64 times its survival). Empty: no profile.
+struct TimeLevels {
+  std::vector<float> level;
+
+  static TimeLevels fromProfile(const std::vector<double>& profile) {
+    TimeLevels t;
+    const size_t bins = profile.size();
+    if (bins == 0) return t;
+    std::vector<double> tail(bins);
+    double sum = 0.0;
+    for (size_t k = bins; k-- > 0;) tail[k] = (sum += std::max(profile[k], 0.0)) / double(bins - k);
+    if (!(tail[0] > 0.0) || !std::isfinite(tail[0])) return t;
+    t.level.resize(bins);
+    for (size_t k = 0; k < bins; ++k) t.level[k] = float(std::clamp(tail[k] / tail[0], 1.0 / 64.0, 1.0));
+    return t;
+  }
+  /// The level at OPL `opl` of a camera ray whose film grid is `grid` (1 before the window).
+  float at(const TimeGrid& grid, double opl) const {
+    if (level.empty() || !(opl >= grid.start)) return 1.0f;
+    const double k = std::floor((opl - grid.start) / grid.binWidth);
+    return level[k >= double(level.size()) ? level.size() - 1 : size_t(k)];
+  }
 };
 
 }  // namespace
@@ -137,6 +175,7 @@ class TransientPathIntegrator : public TransientIntegrator {
         equiangular_(props.getBool("equiangular", true)),
         lightDirections_(props.getBool("light_directions", true)),
         timeGating_(props.getBool("time_gating", true)),
+        timeSplitting_(props.getBool("time_splitting", true)),
         beforeWindowRate_(props.getFloat("before_window_rate", DefaultBeforeWindowRate)) {
     if (props.getBool("skip_before_window", false)) {
       if (!timeGating_)
@@ -161,9 +200,20 @@ class TransientPathIntegrator : public TransientIntegrator {
     props.getInt("block_size", 0);  // mitransient's tile size in scalar mode: femto picks its own tiles
   }
 
+  /// With time_splitting on a transient film: the pilot's profile first
+  /// (pilotTimeProfile), then the render by a copy of this integrator that holds it.
+  RenderStats render(const Scene& scene, const RenderOptions& options) const override {
+    const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
+    if (!timeSplitting_ || !film || depth_.maxDepth == 0) return TransientIntegrator::render(scene, options);
+    TransientRenderContext context{scene, *this, film->timeDeposit(), film->nearClipOrigin() && observerTime_};
+    auto configured = std::make_shared<TransientPathIntegrator>(*this);
+    configured->levels_ = TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples));
+    std::shared_ptr<const TransientIntegrator> integrator = configured;
+    return renderTransientPasses(scene, options, 1, [&](int, double) { return integrator; });
+  }
+
   void sample(const Scene& scene, const Ray& cameraRay, Sampler& sampler, RadianceRecorder& recorder) const override {
     if (depth_.maxDepth == 0) return;
-    const double horizon = recorder.horizon();
     PathState s;
     s.ray = cameraRay;
     s.medium = scene.sensor().medium();
@@ -173,6 +223,24 @@ class TransientPathIntegrator : public TransientIntegrator {
       s.lights = lightBound(scene);
       s.etaMax = scene.largestMediumEta();
     }
+    trace(scene, s, sampler, recorder);
+  }
+
+  bool countsCameraSegment() const override { return observerTime_; }
+
+  std::string toString() const override {
+    return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
+               ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
+               ", light_directions=", lightDirections_ ? "true" : "false",
+               ", time_gating=", timeGating_ ? "true" : "false", ", time_splitting=", timeSplitting_ ? "true" : "false",
+               ", before_window_rate=", beforeWindowRate_, "]");
+  }
+
+ private:
+  /// Follow path `s` from its current ray until it ends (split copies follow
+  /// their own, scatterInMedium / scatterOnSurface).
+  void trace(const Scene& scene, PathState& s, Sampler& sampler, RadianceRecorder& recorder) const {
+    const double horizon = recorder.horizon();
     for (int passThrough = 0; passThrough < MaxPassThrough;) {
       // The surface's interaction only once the path reaches it (PreliminaryHit).
       PreliminaryHit hitAhead;
@@ -213,16 +281,6 @@ class TransientPathIntegrator : public TransientIntegrator {
     }
   }
 
-  bool countsCameraSegment() const override { return observerTime_; }
-
-  std::string toString() const override {
-    return str("TransientPathIntegrator[", depth_.toString(), ", hide_emitters=", hideEmitters_ ? "true" : "false",
-               ", observer_time=", observerTime_ ? "true" : "false", ", equiangular=", equiangular_ ? "true" : "false",
-               ", light_directions=", lightDirections_ ? "true" : "false",
-               ", time_gating=", timeGating_ ? "true" : "false", ", before_window_rate=", beforeWindowRate_, "]");
-  }
-
- private:
   /// Move the path to vertex `p` along the current ray, adding the segment's
   /// OPL (unless it is the camera segment and observer time is off).
   bool advance(PathState& s, const Point3f& p) const {
@@ -714,20 +772,22 @@ class TransientPathIntegrator : public TransientIntegrator {
         pdf = phase.pdf(wi, wo);
         return Color3f(phase.eval(wi, wo));
       });
-    Vec3f wo;
-    float pdf = 0.0f;
-    float weight = phase.sample(wi, sampler.next2D(), wo, pdf);
-    if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
-    s.throughput *= weight;
-    s.prev.p = p;
-    s.prev.bsdfPdf = pdf;
-    s.prev.delta = false;
-    s.ray = Ray(p, wo);
-    s.segmentFromVertex = true;
-    s.prevLightDirected = lightDirected;
-    s.passProbability = 1.0f;
-    s.crossedMedium = false;
-    return russianRoulette(s, sampler);
+    return continueSplit(scene, s, sampler, recorder, [&](PathState& c) {
+      Vec3f wo;
+      float pdf = 0.0f;
+      float weight = phase.sample(wi, sampler.next2D(), wo, pdf);
+      if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
+      c.throughput *= weight;
+      c.prev.p = p;
+      c.prev.bsdfPdf = pdf;
+      c.prev.delta = false;
+      c.ray = Ray(p, wo);
+      c.segmentFromVertex = true;
+      c.prevLightDirected = lightDirected;
+      c.passProbability = 1.0f;
+      c.crossedMedium = false;
+      return russianRoulette(c, sampler, recorder.timeGrid());
+    });
   }
 
   bool scatterOnSurface(const Scene& scene, PathState& s, const SurfaceInteraction& si, Sampler& sampler,
@@ -748,43 +808,84 @@ class TransientPathIntegrator : public TransientIntegrator {
       nextEvent(scene, s, si, sampler, recorder, scatter);
       if (lightDirected) nextEventLightDirected(scene, s, si, sampler, recorder, scatter);
     }
-    BSDFSample bs;
-    Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
-    if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
-    Vec3f wo = si.toWorld(bs.wo);
-    s.throughput *= weight;
-    s.etaScale *= bs.eta * bs.eta;
-    s.leaveSurface(si, wo, bs.eta);
-    s.prev.p = si.p;
-    s.prev.bsdfPdf = bs.pdf;
-    s.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
-    s.segmentFromVertex = true;
-    s.prevLightDirected = lightDirected;
-    s.passProbability = 1.0f;
-    s.crossedMedium = false;
-    return russianRoulette(s, sampler);
+    return continueSplit(scene, s, sampler, recorder, [&](PathState& c) {
+      BSDFSample bs;
+      Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs);
+      if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
+      Vec3f wo = si.toWorld(bs.wo);
+      c.throughput *= weight;
+      c.etaScale *= bs.eta * bs.eta;
+      c.leaveSurface(si, wo, bs.eta);
+      c.prev.p = si.p;
+      c.prev.bsdfPdf = bs.pdf;
+      c.prev.delta = (bs.sampledFlags & BSDFFlags::Delta) != 0;
+      c.segmentFromVertex = true;
+      c.prevLightDirected = lightDirected;
+      c.passProbability = 1.0f;
+      c.crossedMedium = false;
+      return russianRoulette(c, sampler, recorder.timeGrid());
+    });
   }
 
-  /// Russian roulette on the throughput with the radiance scaling of
-  /// refraction removed, so paths inside glass are not killed unfairly.
-  /// Survival is capped at RouletteCap, 0.99 as in mitransient's prbvolpath
-  /// (Mitsuba's path uses 0.95): in media of albedo near 1 the cap is what
-  /// ends paths, and only late bins see them (docs/design/transient-path.md).
-  bool russianRoulette(PathState& s, Sampler& sampler) const {
+  /// Leave a scattering vertex (its next-event estimates made): `continueFrom`
+  /// samples the direction onward and applies the roulette. time_splitting
+  /// first splits the path into n copies of 1/n its throughput when its
+  /// throughput is n or more times the time level at its OPL (TimeLevels);
+  /// each copy samples its own direction and is traced to its end here, the
+  /// path itself continues. Splitting and roulette keep the estimate unbiased
+  /// for any levels (docs/design/transient-path.md, "Splitting against time").
+  template <typename ContinueFn>
+  bool continueSplit(const Scene& scene, PathState& s, Sampler& sampler, RadianceRecorder& recorder,
+                     ContinueFn&& continueFrom) const {
+    if (!levels_.level.empty()) {
+      const float ratio = relativeThroughput(s, recorder.timeGrid());
+      const int n = int(std::min({ratio, float(MaxSplit), float(MaxSplitProduct / s.splitProduct)}));
+      if (n >= 2) {
+        s.throughput = s.throughput / float(n);
+        s.splitProduct *= n;
+        for (int k = 1; k < n; ++k) {
+          PathState copy = s;
+          if (continueFrom(copy)) trace(scene, copy, sampler, recorder);
+        }
+      }
+    }
+    return continueFrom(s);
+  }
+
+  /// The throughput (refraction's radiance scaling removed, so paths inside
+  /// glass are not killed unfairly) over the time level at the path's OPL
+  /// (1 without time_splitting: Mitsuba's roulette).
+  float relativeThroughput(const PathState& s, const TimeGrid& grid) const {
+    return s.throughput.maxValue() * s.etaScale / levels_.at(grid, s.opl);
+  }
+
+  /// Russian roulette on the relative throughput. Survival is capped at
+  /// RouletteCap, 0.99 as in mitransient's prbvolpath (Mitsuba's path uses
+  /// 0.95): in media of albedo near 1 the cap is what ends paths, and only
+  /// late bins see them (docs/design/transient-path.md).
+  bool russianRoulette(PathState& s, Sampler& sampler, const TimeGrid& grid) const {
     if (s.depth < depth_.rrDepth) return true;
-    float q = std::min(s.throughput.maxValue() * s.etaScale, RouletteCap);
+    float q = std::min(relativeThroughput(s, grid), RouletteCap);
     if (!(sampler.next1D() < q)) return false;
     s.throughput = s.throughput / q;
     return true;
   }
 
   static constexpr float RouletteCap = 0.99f;  // russianRoulette
+  // time_splitting: at most this many copies at one vertex and in all of a
+  // camera sample's path; the pilot's camera samples and their seed.
+  static constexpr int MaxSplit = 8;
+  static constexpr int MaxSplitProduct = 16;
+  static constexpr int PilotSamples = 4096;
+  static constexpr uint64_t PilotSeedSalt = 0x7069'6c6f'7421'5eedull;
   PathDepthSettings depth_;
   bool hideEmitters_;
   bool observerTime_;
   bool equiangular_;
   bool lightDirections_;
   bool timeGating_;
+  bool timeSplitting_;
+  TimeLevels levels_;  // time_splitting: set on the copy render() renders with
   float beforeWindowRate_;
   /// before_window_rate's default (docs/BENCHMARKS.md, transient_path sampling (b)).
   static constexpr float DefaultBeforeWindowRate = 0.125f;

@@ -47,10 +47,12 @@ Rendered renderFog(const std::string& name, const std::string& filter, const std
     options.defines["bin_width"] = "0.25";
     options.defines["frames"] = "false";
     // The steady image with the light after the window too (as hdrfilm's),
-    // from samples that do not depend on the window (time gating's do).
+    // from samples that do not depend on the window (time gating's and time
+    // splitting's do).
     if (completeSteady) {
       options.defines["complete_steady"] = "true";
       options.defines["time_gating"] = "false";
+      options.defines["time_splitting"] = "false";
     }
   }
   if (integrator == "transient_beams") {

@@ -43,7 +43,8 @@ Render renderFog(const std::string& name, std::map<std::string, std::string> def
                      {"frames", "false"},
                      // Samples that do not depend on the window (time_gating's do), so the
                      // transient and the steady film's renders see the same ones.
-                     {"time_gating", "false"}};
+                     {"time_gating", "false"},
+                     {"time_splitting", "false"}};
   for (auto& [key, value] : defines) options.defines[key] = value;
   // A steady film has no time axis: strict loading refuses -D it would ignore.
   if (auto film = options.defines.find("film"); film != options.defines.end() && film->second == "hdrfilm")

@@ -38,8 +38,9 @@ std::vector<float> renderWindow(const std::string& name, double start, int bins,
   options.defines = {{"resolution", std::to_string(Resolution)}, {"spp", "4"},
                      {"bins", std::to_string(bins)},           {"bin_width", "0.0625"},
                      {"start", std::to_string(start)},         {"time_filter", filter},
-                     {"frames", "false"},                   {"time_gating", "false"}};
-  // time_gating (on by default) samples inside the window by design: equal within noise only.
+                     {"frames", "false"},                   {"time_gating", "false"},
+                     {"time_splitting", "false"}};
+  // time_gating and time_splitting (on by default) sample for the window by design: equal within noise only.
   auto scene = loadScene(std::filesystem::path(FEMTO_SOURCE_DIR) / "scenes/cornell-box-fog/scene.xml", options);
   RenderOptions render;
   render.output = dir / "fog.exr";

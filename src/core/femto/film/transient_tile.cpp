@@ -8,6 +8,7 @@
 #include <femto/render/film.h>
 #include <femto/render/image_block.h>
 #include <femto/render/rfilter.h>
+#include <femto/render/sampler.h>
 #include <femto/render/medium.h>
 #include <femto/render/sensor.h>
 #include <femto/render/scene.h>
@@ -100,6 +101,38 @@ void TransientSampleRecorder::commit(const Color3f& weight, float* bins, float* 
     if (shares_.before > 0.0) addScaled(before, value, shares_.before);
     if (shares_.after > 0.0) addScaled(after, value, shares_.after);
   }
+}
+
+std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples) {
+  const Scene& scene = context.scene;
+  const Sensor& sensor = scene.sensor();
+  const Film& film = sensor.film();
+  const int bins = context.deposit.grid().bins;
+  std::vector<float> sums(size_t(bins) * 3, 0.0f), steps(sums.size(), 0.0f);
+  float steady[3] = {}, before[3] = {}, after[3] = {};
+  TransientSampleRecorder recorder(context.deposit, pulsedHorizon(context.deposit, scene));
+  std::unique_ptr<Sampler> sampler = sensor.sampler().clone();
+  const Point2i crop = film.cropSize(), offset = film.cropOffset();
+  const uint64_t pixels = uint64_t(crop.x) * uint64_t(crop.y);
+  for (int k = 0; k < samples && pixels > 0; ++k) {
+    const uint64_t p = uint64_t(k) * pixels / uint64_t(samples);
+    sampler->startPixel(seed, uint64_t(k));
+    const Point2f jitter = sampler->next2D();
+    const Point2f pos(float(offset.x + int(p % uint64_t(crop.x))) + jitter.x,
+                      float(offset.y + int(p / uint64_t(crop.x))) + jitter.y);
+    Ray ray;
+    const Color3f weight = sensor.sampleRay(pos, sampler->next2D(), ray);
+    if (weight.isBlack()) continue;
+    recorder.clear();
+    if (context.nearClipOrigin) recorder.setOrigin(nearClipOrigin(scene, ray));
+    context.integrator.sample(scene, ray, *sampler, recorder);
+    if (recorder.valid(weight)) recorder.commit(weight, sums.data(), steady, before, after, steps.data());
+  }
+  std::vector<double> profile(size_t(bins), 0.0);
+  double run[3] = {0.0, 0.0, 0.0};
+  for (int b = 0; b < bins; ++b)
+    for (int c = 0; c < 3; ++c) profile[size_t(b)] += (double(sums[size_t(b) * 3 + c]) + (run[c] += steps[size_t(b) * 3 + c])) / 3.0;
+  return profile;
 }
 
 TransientTile::TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context)

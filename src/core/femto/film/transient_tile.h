@@ -94,6 +94,13 @@ struct TransientRenderContext {
 /// medium, maximised over the film's corners, edges and aperture.
 double largestNearClipOrigin(const Scene& scene);
 
+/// The film's time profile from `samples` camera samples spread evenly over
+/// the crop window (a pilot, before a render): per bin the mean over RGB of
+/// the samples' summed contributions, as the film would bin them (origin,
+/// time filter, pulses). Each sample restarts a clone of the sensor's sampler
+/// from (`seed`, its index), so the profile depends on nothing else.
+std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples);
+
 class TransientTile final : public TileAccumulator {
  public:
   TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context);

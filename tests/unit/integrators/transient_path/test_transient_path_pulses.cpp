@@ -35,10 +35,12 @@ constexpr int Size = 8;
 /// and a dim constant environment, each emitting with `pulse` (XML
 /// parameters). max_depth 4 keeps every path's OPL below ~60, inside every
 /// window below, so no render stops a path early and the same seed gives the
-/// same paths whatever the film's time axis.
+/// same paths whatever the film's time axis (time_splitting off: its time
+/// profile, and so its paths, depend on the axis and the pulse).
 std::string scene(const std::string& pulse, const std::string& film, int spp = 4) {
   return str(R"(<scene version="3.0.0">
-  <integrator type="transient_path"><integer name="max_depth" value="4"/></integrator>
+  <integrator type="transient_path"><integer name="max_depth" value="4"/>
+    <boolean name="time_splitting" value="false"/></integrator>
   <shape type="rectangle">
     <transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/><translate y="-1"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
