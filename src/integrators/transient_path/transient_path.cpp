@@ -131,31 +131,50 @@ struct PathState : OpticalPath {
   int splitProduct = 1;
 };
 
-/// time_splitting's weight window: per bin of the film, the level a path's
-/// throughput is compared with there, the mean of the profile over the bins
-/// from there to the window's end (what the path can still reach) over its
-/// mean over the whole window, clamped to [1/64, 1] (never more roulette than
-/// Mitsuba's rule; at most 64 times its survival). Empty: no profile.
+/// time_splitting's weight window over the time axis from OPL 0 (or the
+/// window's start, if earlier) to the window's end, in the film's OPL: per
+/// bin of that axis, the level a path's throughput is compared with there,
+/// the mean of the profile over the bins from there to the end (what the
+/// path can still reach) over the largest such mean, clamped to [1/64, 1]
+/// (never more roulette than Mitsuba's rule; at most 64 times its survival),
+/// and 1 up to the bin of that largest mean. The axis starts at 0, not at the
+/// window, so a window's render rations its paths as a render of a longer
+/// window does over the same times. Empty: no profile.
 struct TimeLevels {
+  TimeGrid axis;
+  double windowStart = 0.0;  // the film's grid start (a camera ray's grid is shifted by its time origin)
   std::vector<float> level;
 
-  static TimeLevels fromProfile(const std::vector<double>& profile) {
+  /// The pilot's axis for a film window: at most `maxBins` bins, none narrower than the window's.
+  static TimeGrid pilotAxis(const TimeGrid& window, int maxBins) {
+    TimeGrid axis;
+    axis.start = std::min(0.0, window.start);
+    const double span = window.end() - axis.start;
+    axis.bins = int(std::clamp(std::ceil(span / window.binWidth), 1.0, double(maxBins)));
+    axis.binWidth = span / axis.bins;
+    return axis;
+  }
+  static TimeLevels fromProfile(const std::vector<double>& profile, const TimeGrid& axis, double windowStart) {
     TimeLevels t;
     const size_t bins = profile.size();
     if (bins == 0) return t;
     std::vector<double> tail(bins);
     double sum = 0.0;
     for (size_t k = bins; k-- > 0;) tail[k] = (sum += std::max(profile[k], 0.0)) / double(bins - k);
-    if (!(tail[0] > 0.0) || !std::isfinite(tail[0])) return t;
+    const size_t peak = size_t(std::max_element(tail.begin(), tail.end()) - tail.begin());
+    if (!(tail[peak] > 0.0) || !std::isfinite(tail[peak])) return t;
+    t.axis = axis;
+    t.windowStart = windowStart;
     t.level.resize(bins);
-    for (size_t k = 0; k < bins; ++k) t.level[k] = float(std::clamp(tail[k] / tail[0], 1.0 / 64.0, 1.0));
+    for (size_t k = 0; k < bins; ++k)
+      t.level[k] = k <= peak ? 1.0f : float(std::clamp(tail[k] / tail[peak], 1.0 / 64.0, 1.0));
     return t;
   }
-  /// The level at OPL `opl` of a camera ray whose film grid is `grid` (1 before the window).
+  /// The level at OPL `opl` of a camera ray whose film grid is `grid`.
   float at(const TimeGrid& grid, double opl) const {
-    if (level.empty() || !(opl >= grid.start)) return 1.0f;
-    const double k = std::floor((opl - grid.start) / grid.binWidth);
-    return level[k >= double(level.size()) ? level.size() - 1 : size_t(k)];
+    if (level.empty()) return 1.0f;
+    const double k = std::floor((opl - (grid.start - windowStart) - axis.start) / axis.binWidth);
+    return k < 0.0 ? 1.0f : level[k >= double(level.size()) ? level.size() - 1 : size_t(k)];
   }
 };
 
@@ -205,9 +224,13 @@ class TransientPathIntegrator : public TransientIntegrator {
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
     if (!timeSplitting_ || !film || depth_.maxDepth == 0) return TransientIntegrator::render(scene, options);
-    TransientRenderContext context{scene, *this, film->timeDeposit(), film->nearClipOrigin() && observerTime_};
+    const TimeGrid& window = film->timeGrid();
+    const TimeGrid axis = TimeLevels::pilotAxis(window, PilotBins);
+    const TimeDeposit deposit(axis, TimeFilter::box());
+    TransientRenderContext context{scene, *this, deposit, film->nearClipOrigin() && observerTime_};
     auto configured = std::make_shared<TransientPathIntegrator>(*this);
-    configured->levels_ = TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples));
+    configured->levels_ =
+        TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples), axis, window.start);
     std::shared_ptr<const TransientIntegrator> integrator = configured;
     return renderTransientPasses(scene, options, 1, [&](int, double) { return integrator; });
   }
@@ -877,6 +900,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   static constexpr int MaxSplit = 8;
   static constexpr int MaxSplitProduct = 16;
   static constexpr int PilotSamples = 4096;
+  static constexpr int PilotBins = 4096;
   static constexpr uint64_t PilotSeedSalt = 0x7069'6c6f'7421'5eedull;
   PathDepthSettings depth_;
   bool hideEmitters_;
