@@ -62,14 +62,14 @@ inline int environmentCount(const char* name, int fallback) {
   return n ? std::max(1, std::atoi(n)) : fallback;
 }
 
-/// Per run (seeds 100, 101, ...), per time bin and one more entry for the
-/// steady image: the image sum of the channel average.
+/// Per run (seeds seed0, seed0 + 1, ...), per time bin and one more entry
+/// for the steady image: the image sum of the channel average.
 inline std::vector<std::vector<double>> imageSumsPerRun(const std::shared_ptr<Scene>& scene, const std::string& name,
-                                                        int runs) {
+                                                        int runs, uint64_t seed0 = 100) {
   auto dir = scratchDir(name);
   std::vector<std::vector<double>> perRun;
   for (int run = 0; run < runs; ++run) {
-    Rendered r = render(scene, dir / "out.exr", uint64_t(100 + run));
+    Rendered r = render(scene, dir / "out.exr", seed0 + uint64_t(run));
     std::vector<double>& perBin = perRun.emplace_back(size_t(r.bins) + 1, 0.0);
     for (size_t i = 0; i < r.volume.size(); ++i) perBin[(i / 3) % size_t(r.bins)] += r.volume[i] / 3.0;
     for (int y = 0; y < r.steady.height; ++y)
@@ -81,9 +81,10 @@ inline std::vector<std::vector<double>> imageSumsPerRun(const std::shared_ptr<Sc
 }
 
 /// The same sums as means over the runs.
-inline std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs) {
+inline std::vector<Mean> imageSums(const std::shared_ptr<Scene>& scene, const std::string& name, int runs,
+                                   uint64_t seed0 = 100) {
   std::vector<Mean> sums;
-  for (const std::vector<double>& perBin : imageSumsPerRun(scene, name, runs)) {
+  for (const std::vector<double>& perBin : imageSumsPerRun(scene, name, runs, seed0)) {
     sums.resize(perBin.size());
     for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
   }

@@ -47,25 +47,6 @@ std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting, int firstBin = 0
 </scene>)"));
 }
 
-/// Per time bin and then for the steady image, the image sum (channel
-/// average) over `runs` renders with seeds seed0, seed0 + 1, ...
-std::vector<Mean> binSums(const std::shared_ptr<Scene>& scene, const std::string& name, uint64_t seed0, int runs) {
-  auto dir = scratchDir(name);
-  std::vector<Mean> sums;
-  for (int run = 0; run < runs; ++run) {
-    Rendered r = render(scene, dir / "out.exr", seed0 + uint64_t(run));
-    std::vector<double> perBin(size_t(r.bins) + 1, 0.0);  // the bins, then the steady image
-    for (size_t i = 0; i < r.volume.size(); ++i) perBin[(i / 3) % size_t(r.bins)] += r.volume[i] / 3.0;
-    for (int y = 0; y < r.steady.height; ++y)
-      for (int x = 0; x < r.steady.width; ++x)
-        for (int c = 0; c < 3; ++c) perBin.back() += r.steady.pixel(x, y)[c] / 3.0;
-    sums.resize(perBin.size());
-    for (size_t b = 0; b < perBin.size(); ++b) sums[b].add(perBin[b]);
-  }
-  std::filesystem::remove_all(dir);
-  return sums;
-}
-
 /// The late half of the bins' summed squared relative standard error.
 double lateNoise(const std::vector<Mean>& sums) {
   double n = 0.0;
@@ -82,8 +63,8 @@ TEST(TransientPathTimeSplitting, AgreesWithMitsubaRoulettePerBinAndIsLessNoisyLa
   const int runs = 12;
   for (const Cube& c : Cubes) {
     SCOPED_TRACE(str("sigma_t ", c.sigmaT, " albedo ", c.albedo, " observer time ", c.observerTime));
-    std::vector<Mean> split = binSums(cubeScene(c, true), "time_splitting_on", 100, runs);
-    std::vector<Mean> plain = binSums(cubeScene(c, false), "time_splitting_off", 500, runs);
+    std::vector<Mean> split = imageSums(cubeScene(c, true), "time_splitting_on", runs, 100);
+    std::vector<Mean> plain = imageSums(cubeScene(c, false), "time_splitting_off", runs, 500);
     ASSERT_GT(plain[plain.size() - 2].mean(), 0.0) << "the last bin holds light: the late bins are compared";
     expectAgree(split, plain, "time_splitting");
     EXPECT_LT(lateNoise(split), lateNoise(plain)) << "splitting spends its paths on the late bins";
@@ -104,8 +85,8 @@ TEST(TransientPathTimeSplitting, BitsDoNotDependOnTheThreadCount) {
 TEST(TransientPathTimeSplitting, ALateWindowAloneAgreesWithTheWholeWindowsBins) {
   const int runs = 12;
   const Cube& c = Cubes[1];
-  std::vector<Mean> whole = binSums(cubeScene(c, true), "time_splitting_whole", 100, runs);
-  std::vector<Mean> late = binSums(cubeScene(c, true, 16, 8), "time_splitting_late", 500, runs);
+  std::vector<Mean> whole = imageSums(cubeScene(c, true), "time_splitting_whole", runs, 100);
+  std::vector<Mean> late = imageSums(cubeScene(c, true, 16, 8), "time_splitting_late", runs, 500);
   // The bins 16..23 of the whole window; the steady images differ (each holds the light before its own end).
   std::vector<Mean> same(whole.begin() + 16, whole.begin() + 24);
   late.pop_back();
