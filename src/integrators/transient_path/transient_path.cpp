@@ -230,7 +230,8 @@ class TransientPathIntegrator : public TransientIntegrator {
     TransientRenderContext context{scene, *this, deposit, film->nearClipOrigin() && observerTime_};
     auto configured = std::make_shared<TransientPathIntegrator>(*this);
     configured->levels_ =
-        TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples), axis, window.start);
+        TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples, options.threads),
+                                axis, window.start);
     std::shared_ptr<const TransientIntegrator> integrator = configured;
     return renderTransientPasses(scene, options, 1, [&](int, double) { return integrator; });
   }

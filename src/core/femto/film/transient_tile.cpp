@@ -1,9 +1,13 @@
 #include <femto/film/transient_tile.h>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 
 #include <femto/base/error.h>
+#include <femto/base/thread_edges.h>
 #include <femto/render/emitter.h>
 #include <femto/render/film.h>
 #include <femto/render/image_block.h>
@@ -103,35 +107,57 @@ void TransientSampleRecorder::commit(const Color3f& weight, float* bins, float* 
   }
 }
 
-std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples) {
+std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples, int threads) {
   const Scene& scene = context.scene;
   const Sensor& sensor = scene.sensor();
   const Film& film = sensor.film();
   const int bins = context.deposit.grid().bins;
-  std::vector<float> sums(size_t(bins) * 3, 0.0f), steps(sums.size(), 0.0f);
-  float steady[3] = {}, before[3] = {}, after[3] = {};
-  TransientSampleRecorder recorder(context.deposit, pulsedHorizon(context.deposit, scene));
-  std::unique_ptr<Sampler> sampler = sensor.sampler().clone();
   const Point2i crop = film.cropSize(), offset = film.cropOffset();
   const uint64_t pixels = uint64_t(crop.x) * uint64_t(crop.y);
-  for (int k = 0; k < samples && pixels > 0; ++k) {
-    const uint64_t p = uint64_t(k) * pixels / uint64_t(samples);
-    sampler->startPixel(seed, uint64_t(k));
-    const Point2f jitter = sampler->next2D();
-    const Point2f pos(float(offset.x + int(p % uint64_t(crop.x))) + jitter.x,
-                      float(offset.y + int(p / uint64_t(crop.x))) + jitter.y);
-    Ray ray;
-    const Color3f weight = sensor.sampleRay(pos, sampler->next2D(), ray);
-    if (weight.isBlack()) continue;
-    recorder.clear();
-    if (context.nearClipOrigin) recorder.setOrigin(nearClipOrigin(scene, ray));
-    context.integrator.sample(scene, ray, *sampler, recorder);
-    if (recorder.valid(weight)) recorder.commit(weight, sums.data(), steady, before, after, steps.data());
-  }
+  // Fixed chunks of samples, each summed by one task, the chunks' sums added
+  // in chunk order: the same bits on any number of threads.
+  constexpr int Chunk = 256;
+  const int chunks = pixels > 0 && samples > 0 ? (samples + Chunk - 1) / Chunk : 0;
+  std::vector<std::vector<double>> chunkSums(static_cast<size_t>(chunks));
+  auto traceChunk = [&](int c) {
+    std::vector<float> sums(size_t(bins) * 3, 0.0f), steps(sums.size(), 0.0f);
+    float steady[3] = {}, before[3] = {}, after[3] = {};
+    TransientSampleRecorder recorder(context.deposit, pulsedHorizon(context.deposit, scene));
+    std::unique_ptr<Sampler> sampler = sensor.sampler().clone();
+    for (int k = c * Chunk; k < std::min(samples, (c + 1) * Chunk); ++k) {
+      const uint64_t p = uint64_t(k) * pixels / uint64_t(samples);
+      sampler->startPixel(seed, uint64_t(k));
+      const Point2f jitter = sampler->next2D();
+      const Point2f pos(float(offset.x + int(p % uint64_t(crop.x))) + jitter.x,
+                        float(offset.y + int(p / uint64_t(crop.x))) + jitter.y);
+      Ray ray;
+      const Color3f weight = sensor.sampleRay(pos, sampler->next2D(), ray);
+      if (weight.isBlack()) continue;
+      recorder.clear();
+      if (context.nearClipOrigin) recorder.setOrigin(nearClipOrigin(scene, ray));
+      context.integrator.sample(scene, ray, *sampler, recorder);
+      if (recorder.valid(weight)) recorder.commit(weight, sums.data(), steady, before, after, steps.data());
+    }
+    std::vector<double>& profile = chunkSums[size_t(c)];
+    profile.assign(size_t(bins), 0.0);
+    double run[3] = {0.0, 0.0, 0.0};
+    for (int b = 0; b < bins; ++b)
+      for (int ch = 0; ch < 3; ++ch)
+        profile[size_t(b)] += (double(sums[size_t(b) * 3 + ch]) + (run[ch] += steps[size_t(b) * 3 + ch])) / 3.0;
+  };
+  auto traceAll = [&] {
+    ForkJoinEdges edges;
+    tbb::parallel_for(0, chunks, edges.task(traceChunk));
+    edges.join();
+  };
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    executeInArena(arena, traceAll);
+  } else
+    traceAll();
   std::vector<double> profile(size_t(bins), 0.0);
-  double run[3] = {0.0, 0.0, 0.0};
-  for (int b = 0; b < bins; ++b)
-    for (int c = 0; c < 3; ++c) profile[size_t(b)] += (double(sums[size_t(b) * 3 + c]) + (run[c] += steps[size_t(b) * 3 + c])) / 3.0;
+  for (const std::vector<double>& chunk : chunkSums)
+    for (int b = 0; b < bins; ++b) profile[size_t(b)] += chunk[size_t(b)];
   return profile;
 }
 

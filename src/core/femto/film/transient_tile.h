@@ -98,8 +98,11 @@ double largestNearClipOrigin(const Scene& scene);
 /// the crop window (a pilot, before a render): per bin the mean over RGB of
 /// the samples' summed contributions, as the film would bin them (origin,
 /// time filter, pulses). Each sample restarts a clone of the sensor's sampler
-/// from (`seed`, its index), so the profile depends on nothing else.
-std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples);
+/// from (`seed`, its index), so the profile depends on nothing else (traced
+/// in parallel on `threads` threads, 0: all, in chunks summed in order: the
+/// same on any thread count).
+std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples,
+                                     int threads = 0);
 
 class TransientTile final : public TileAccumulator {
  public:
