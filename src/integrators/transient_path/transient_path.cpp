@@ -170,11 +170,13 @@ struct TimeLevels {
       t.level[k] = k <= peak ? 1.0f : float(std::clamp(tail[k] / tail[peak], 1.0 / 64.0, 1.0));
     return t;
   }
-  /// The level at OPL `opl` of a camera ray whose film grid is `grid`.
+  /// The level at OPL `opl` of a camera ray whose film grid is `grid`: 1
+  /// past the window's end too, where a path (traced on for the steady image,
+  /// complete_steady) reaches no bin.
   float at(const TimeGrid& grid, double opl) const {
     if (level.empty()) return 1.0f;
     const double k = std::floor((opl - (grid.start - windowStart) - axis.start) / axis.binWidth);
-    return k < 0.0 ? 1.0f : level[k >= double(level.size()) ? level.size() - 1 : size_t(k)];
+    return k < 0.0 || k >= double(level.size()) ? 1.0f : level[size_t(k)];
   }
 };
 
