@@ -122,10 +122,12 @@ void bindScene(py::module_& m) {
       .def("output_paths", &outputPaths, py::arg("output"))
       .def("parameters",
            [](Scene& scene) {
-             py::list names;
+             py::dict values;  // "object.parameter" -> a number, or a tuple of 3 for a colour
              for (const auto& [name, object] : editableObjects(scene))
-               for (const std::string& p : object->editableParameters()) names.append(name + "." + p);
-             return names;
+               for (const auto& [p, value] : object->editableParameters())
+                 values[py::str(name + "." + p)] =
+                     value.size() == 1 ? py::object(py::float_(value[0])) : py::object(py::tuple(py::cast(value)));
+             return values;
            })
       .def(
           "set_parameter",

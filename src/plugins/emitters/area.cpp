@@ -48,7 +48,7 @@ class AreaEmitter final : public Emitter {
   }
 
   Color3f power() const override { return radiance_ * (Pi * shape().surfaceArea()); }
-  std::vector<std::string> editableParameters() const override { return {"radiance"}; }
+  ParameterValues editableParameters() const override { return {{"radiance", parameterValue(radiance_)}}; }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name != "radiance") return Emitter::setParameter(name, value);
     radiance_ = editableColor(toString(), name, value);

@@ -44,7 +44,7 @@ class PointLight final : public Emitter {
   }
 
   Color3f power() const override { return intensity_ * (4.0f * Pi); }
-  std::vector<std::string> editableParameters() const override { return {"intensity"}; }
+  ParameterValues editableParameters() const override { return {{"intensity", parameterValue(intensity_)}}; }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name != "intensity") return Emitter::setParameter(name, value);
     intensity_ = editableColor(toString(), name, value);

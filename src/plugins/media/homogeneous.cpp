@@ -38,7 +38,9 @@ class HomogeneousMedium final : public Medium {
     sigmaS_ = coefficients_.sigmaS();
   }
 
-  std::vector<std::string> editableParameters() const override { return {"sigma_t", "albedo"}; }
+  ParameterValues editableParameters() const override {
+    return {{"sigma_t", parameterValue(coefficients_.sigmaT)}, {"albedo", parameterValue(coefficients_.albedo)}};
+  }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name == "sigma_t")
       coefficients_.sigmaT = editableColor(toString(), name, value);

@@ -38,7 +38,7 @@ class IndependentSampler final : public Sampler {
   }
 
   /// Samples per pixel may change between renders (no derived state).
-  std::vector<std::string> editableParameters() const override { return {"sample_count"}; }
+  ParameterValues editableParameters() const override { return {{"sample_count", {double(sampleCount())}}}; }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name != "sample_count") return Sampler::setParameter(name, value);
     if (value.size() != 1 || !(value[0] >= 1.0 && value[0] <= 4294967295.0) || value[0] != std::floor(value[0]))

@@ -43,11 +43,12 @@ class Scene:
             self._scenes[spp] = native
         return self._scenes[spp]
 
-    def parameters(self) -> list:
-        """The parameters set() can change, as "object.parameter": "film.start_opl",
-        "sampler.sample_count", and those of objects with an id ("fog.sigma_t",
-        "light.intensity"); docs/python.md lists them."""
-        return list(self._native(self._default_spp).parameters())
+    def parameters(self) -> dict:
+        """The parameters set() can change and their values, as {"object.parameter":
+        value}: "film.start_opl", "sampler.sample_count", and those of objects with
+        an id ("fog.sigma_t", "light.intensity"); a colour is a tuple of 3.
+        docs/python.md lists them."""
+        return dict(self._native_for(None).parameters())
 
     def set(self, key, value):
         """Change parameter `key` (a name parameters() lists) to `value`: a number,

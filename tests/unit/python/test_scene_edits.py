@@ -72,10 +72,15 @@ def loads(monkeypatch):
     return count
 
 
-def test_parameters_lists_what_can_change():
-    names = femto.load_string(xml("transient_path")).parameters()
+def test_parameters_lists_what_can_change_and_its_value():
+    scene = femto.load_string(xml("transient_path"))
+    values = scene.parameters()
     for key, _, _ in EDITS:
-        assert key in names
+        assert key in values
+    assert values["fog.sigma_t"] == (0.5, 0.5, 0.5) and values["film.temporal_bins"] == 24
+    assert values["sampler.sample_count"] == BASE["spp"]
+    scene.set("bulb.intensity", [1, 2, 3])
+    assert scene.parameters()["bulb.intensity"] == (1.0, 2.0, 3.0)
 
 
 @pytest.mark.parametrize("integrator", ["transient_path", "transient_beams"])

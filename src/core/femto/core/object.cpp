@@ -20,7 +20,7 @@ std::optional<ObjectKind> kindFromTag(std::string_view tag) {
 
 void Object::setParameter(const std::string& name, const std::vector<double>&) {
   std::string editable;
-  for (const std::string& p : editableParameters()) editable += (editable.empty() ? "" : ", ") + p;
+  for (const auto& [p, value] : editableParameters()) editable += (editable.empty() ? "" : ", ") + p;
   throw Error(str(toString(), ": \"", name, "\" cannot change after loading",
                   editable.empty() ? std::string(" (nothing of it can)") : " (it can change: " + editable + ")"));
 }

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 #include <string_view>
 
@@ -40,6 +41,11 @@ std::optional<ObjectKind> kindFromTag(std::string_view tag);
 /// A parameter value for setParameter as a colour (1 number: grey), checked
 /// finite and non-negative; errors name `owner` and `name`.
 Color3f editableColor(const std::string& owner, const std::string& name, const std::vector<double>& value);
+/// A colour as editableParameters reports it (3 numbers).
+inline std::vector<double> parameterValue(const Color3f& c) { return {double(c.r), double(c.g), double(c.b)}; }
+
+/// Parameters with their current values (1 number, or 3 for a colour), in order.
+using ParameterValues = std::vector<std::pair<std::string, std::vector<double>>>;
 
 class Object {
  public:
@@ -47,9 +53,10 @@ class Object {
   virtual ObjectKind kind() const = 0;
   /// Human-readable summary (parameters), for `femto render --verbose` and tests.
   virtual std::string toString() const;
-  /// Parameters that may change after loading, between renders (Python's
-  /// Scene.set, docs/python.md "Editing a loaded scene"); none by default.
-  virtual std::vector<std::string> editableParameters() const { return {}; }
+  /// Parameters that may change after loading, between renders, with their
+  /// current values (Python's Scene.parameters and Scene.set, docs/python.md
+  /// "Editing a loaded scene"); none by default.
+  virtual ParameterValues editableParameters() const { return {}; }
   /// Change parameter `name` to `value` (1 number, or 3 for a colour):
   /// femto::Error naming the object and what it can change otherwise. Not
   /// thread-safe: never while the scene renders.

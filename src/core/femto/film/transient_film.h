@@ -54,7 +54,10 @@ class TransientFilm : public Film {
   void useIntegratorTimeFilter(const TimeFilter& filter, const SourceLocation& where) override;
   bool timeResolved() const override { return true; }
   /// The time window: start_opl, bin_width_opl, temporal_bins.
-  std::vector<std::string> editableParameters() const override { return {"start_opl", "bin_width_opl", "temporal_bins"}; }
+  ParameterValues editableParameters() const override {
+    const TimeGrid& g = deposit_.grid();
+    return {{"start_opl", {g.start}}, {"bin_width_opl", {g.binWidth}}, {"temporal_bins", {double(g.bins)}}};
+  }
   void setParameter(const std::string& name, const std::vector<double>& value) override;
 
   const TimeGrid& timeGrid() const { return deposit_.grid(); }
