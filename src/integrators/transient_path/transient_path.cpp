@@ -28,7 +28,7 @@
 // | equiangular          | boolean | true    | equiangular next-event vertices toward point lights (false: free flights only, for comparisons) | - |
 // | light_directions     | boolean | true    | a second next-event vertex per scattering vertex, along a direction sampled around point lights, and the surface that direction ends on (needs equiangular) | - |
 // | time_gating          | boolean | true    | sample next-event distances toward point lights inside the film's time window, truncate free flights past it (false: every sample independent of the window, as before) | - |
-// | time_splitting       | boolean | true    | transient films: roulette and split paths against the film's time profile (a pilot of 4096 camera samples), so late bins get as many paths as early ones (false: Mitsuba's roulette on the throughput) | - |
+// | time_splitting       | boolean | true    | transient films: roulette and split paths against the film's time profile (a pilot of up to 4096 camera samples, a quarter of a pass's at most), so late bins get as many paths as early ones (false: Mitsuba's roulette on the throughput) | - |
 // | before_window_rate   | float   | 0.125   | with time_gating: the share of next-event connections whose light arrives before the window that are made (weighted by its inverse) | - |
 // | skip_before_window   | boolean | false   | with time_gating: before_window_rate = 0 (steady and _before then lack that light) | - |
 // | camera_unwarp        | boolean | false   | mitransient's name for observer_time = false                 | -    |
@@ -230,10 +230,14 @@ class TransientPathIntegrator : public TransientIntegrator {
     const TimeGrid axis = TimeLevels::pilotAxis(window, PilotBins);
     const TimeDeposit deposit(axis, TimeFilter::box());
     TransientRenderContext context{scene, *this, deposit, film->nearClipOrigin() && observerTime_};
+    // A quarter of one pass's camera samples at most, so a small render does
+    // not pay more for its pilot than for itself.
+    const double passSamples =
+        double(film->cropSize().x) * double(film->cropSize().y) * double(scene.sensor().sampler().sampleCount());
+    const int samples = int(std::clamp(passSamples / 4.0, double(MinPilotSamples), double(MaxPilotSamples)));
     auto configured = std::make_shared<TransientPathIntegrator>(*this);
-    configured->levels_ =
-        TimeLevels::fromProfile(pilotTimeProfile(context, options.seed ^ PilotSeedSalt, PilotSamples, options.threads),
-                                axis, window.start);
+    configured->levels_ = TimeLevels::fromProfile(
+        pilotTimeProfile(context, options.seed ^ PilotSeedSalt, samples, options.threads), axis, window.start);
     std::shared_ptr<const TransientIntegrator> integrator = configured;
     return renderTransientPasses(scene, options, 1, [&](int, double) { return integrator; });
   }
@@ -902,7 +906,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   // camera sample's path; the pilot's camera samples and their seed.
   static constexpr int MaxSplit = 8;
   static constexpr int MaxSplitProduct = 16;
-  static constexpr int PilotSamples = 4096;
+  static constexpr int MinPilotSamples = 256, MaxPilotSamples = 4096;
   static constexpr int PilotBins = 4096;
   static constexpr uint64_t PilotSeedSalt = 0x7069'6c6f'7421'5eedull;
   PathDepthSettings depth_;
