@@ -46,6 +46,12 @@ class ConstantEnvironment final : public Emitter {
   /// Flux into the scene's bounding sphere: L pi (4 pi R^2).
   Color3f power() const override { return radiance_ * (4.0f * Pi * sphere_.diskArea()); }
 
+  ParameterValues editableParameters() const override { return {{"radiance", parameterValue(radiance_)}}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override {
+    if (name != "radiance") return Emitter::setParameter(name, value);
+    radiance_ = editableColor(toString(), name, value);
+  }
+
   std::string toString() const override { return str("ConstantEnvironment[radiance=", radiance_, "]"); }
 
  private:

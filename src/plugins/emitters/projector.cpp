@@ -54,6 +54,15 @@ class ProjectorLight final : public OrientedPointEmitter {
 
   Color3f power() const override { return irradiance_->mean() * (scale_ * planeArea()); }
 
+  /// The projector's brightness (its irradiance image is fixed at load).
+  ParameterValues editableParameters() const override { return {{"scale", {double(scale_)}}}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override {
+    if (name != "scale") return OrientedPointEmitter::setParameter(name, value);
+    if (value.size() != 1 || !std::isfinite(value[0]) || value[0] < 0.0)
+      throw Error(str(toString(), ": scale takes one finite number >= 0"));
+    scale_ = float(value[0]);
+  }
+
   std::string toString() const override {
     return str("ProjectorLight[position=", position_, ", fov=", fov_, ", scale=", scale_,
                ", irradiance=", irradiance_->toString(), "]");

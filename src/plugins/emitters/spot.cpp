@@ -54,6 +54,12 @@ class SpotLight final : public OrientedPointEmitter {
     return texture_ ? p * texture_->mean() : p;
   }
 
+  ParameterValues editableParameters() const override { return {{"intensity", parameterValue(intensity_)}}; }
+  void setParameter(const std::string& name, const std::vector<double>& value) override {
+    if (name != "intensity") return OrientedPointEmitter::setParameter(name, value);
+    intensity_ = editableColor(toString(), name, value);
+  }
+
   std::string toString() const override {
     return str("SpotLight[position=", position_, ", intensity=", intensity_, ", cutoff_angle=", radToDeg(falloff_.cutoff()),
                ", beam_width=", radToDeg(falloff_.beamWidth()), texture_ ? str(", texture=", texture_->toString()) : "", "]");

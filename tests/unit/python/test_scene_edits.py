@@ -130,3 +130,41 @@ def test_bad_edits_name_the_object_and_what_can_change():
         scene.set("film.temporal_bins", 2.5)
     with pytest.raises(femto.SceneError, match="OBJECT.PARAMETER"):
         scene.set("intensity", 1.0)
+
+
+LIGHTS = """<scene version="3.0.0">
+  <integrator type="transient_path"><integer name="max_depth" value="3"/></integrator>
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0, 1, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+    <film type="transient"><integer name="width" value="12"/><integer name="height" value="10"/>
+      <integer name="temporal_bins" value="16"/><float name="start_opl" value="3"/>
+      <float name="bin_width_opl" value="0.5"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="2"/><rotate x="1" angle="-90"/><translate y="-1"/></transform>
+    <bsdf type="diffuse"/>
+  </shape>
+  <emitter type="spot" id="spot"><rgb name="intensity" value="{spot}"/><float name="cutoff_angle" value="30"/>
+    <transform name="to_world"><lookat origin="0, 1, 0" target="0, -1, 0" up="0, 0, 1"/></transform></emitter>
+  <emitter type="projector" id="laser"><float name="scale" value="{scale}"/><float name="fov" value="5"/>
+    <transform name="to_world"><lookat origin="1, 1, 1" target="0, -1, 0" up="0, 1, 0"/></transform></emitter>
+  <emitter type="constant" id="sky"><rgb name="radiance" value="{sky}"/></emitter>
+</scene>
+"""
+
+
+def test_lights_edits_render_what_a_fresh_load_renders(loads):
+    base = dict(spot="2", scale=1.0, sky="0.1")
+    scene = femto.load_string(LIGHTS.format(**base))
+    changes = dict(base)
+    before = render(scene)
+    for key, value, spelled in [("spot.intensity", [3, 2, 1], dict(spot="3, 2, 1")), ("laser.scale", 4.0, dict(scale=4.0)),
+                                ("sky.radiance", 0.25, dict(sky="0.25"))]:
+        scene.set(key, value)
+        changes.update(spelled)
+        edited, fresh = render(scene), render(femto.load_string(LIGHTS.format(**changes)))
+        assert not np.array_equal(edited[0], before[0]), f"{key}: the edit changed nothing the camera sees"
+        assert np.array_equal(edited[0], fresh[0]) and np.array_equal(edited[1], fresh[1]), key
+        before = edited
+    assert loads["n"] == 4  # the scene and one fresh scene per edit
