@@ -23,6 +23,7 @@
 // | sampling_weight | float | 1       | relative probability of being picked for NEE              | -      |
 // | medium          | medium    | none     | the medium the light sits in: a nested <medium> or <ref>, any name (endpoint_medium.h) | - |
 #include <cmath>
+#include <limits>
 
 #include <femto/core/plugin.h>
 #include <femto/math/transform.h>
@@ -58,9 +59,7 @@ class ProjectorLight final : public OrientedPointEmitter {
   ParameterValues editableParameters() const override { return {{"scale", {double(scale_)}}}; }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name != "scale") return OrientedPointEmitter::setParameter(name, value);
-    if (value.size() != 1 || !std::isfinite(value[0]) || value[0] < 0.0)
-      throw Error(str(toString(), ": scale takes one finite number >= 0"));
-    scale_ = float(value[0]);
+    scale_ = float(editableNumber(toString(), name, value, 0.0, std::numeric_limits<float>::max()));
   }
 
   std::string toString() const override {

@@ -11,8 +11,6 @@
 // |--------------|---------|---------|-------------------------|
 // | sample_count | integer | 4       | samples per pixel (> 0) |
 // | seed         | integer | 0       | Mitsuba 3: the sampler's seed, combined with --seed (render/sampler.h) |
-#include <cmath>
-
 #include <femto/core/plugin.h>
 #include <femto/math/pcg32.h>
 #include <femto/render/sampler.h>
@@ -41,9 +39,7 @@ class IndependentSampler final : public Sampler {
   ParameterValues editableParameters() const override { return {{"sample_count", {double(sampleCount())}}}; }
   void setParameter(const std::string& name, const std::vector<double>& value) override {
     if (name != "sample_count") return Sampler::setParameter(name, value);
-    if (value.size() != 1 || !(value[0] >= 1.0 && value[0] <= 4294967295.0) || value[0] != std::floor(value[0]))
-      throw Error(str(toString(), ": sample_count must be a whole number from 1"));
-    setSampleCount(uint32_t(value[0]));
+    setSampleCount(uint32_t(editableNumber(toString(), name, value, 1.0, 4294967295.0, true)));
   }
 
   std::string toString() const override { return str("IndependentSampler[sample_count=", sampleCount(), "]"); }

@@ -1,6 +1,8 @@
 #include <femto/core/object.h>
 
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include <femto/base/error.h>
 
@@ -23,6 +25,14 @@ void Object::setParameter(const std::string& name, const std::vector<double>&) {
   for (const auto& [p, value] : editableParameters()) editable += (editable.empty() ? "" : ", ") + p;
   throw Error(str(toString(), ": \"", name, "\" cannot change after loading",
                   editable.empty() ? std::string(" (nothing of it can)") : " (it can change: " + editable + ")"));
+}
+
+double editableNumber(const std::string& owner, const std::string& name, const std::vector<double>& value, double min,
+                      double max, bool whole) {
+  if (value.size() != 1 || !(value[0] >= min && value[0] <= max) || (whole && value[0] != std::floor(value[0])))
+    throw Error(str(owner, ": \"", name, "\" takes one ", whole ? "whole number" : "number", " from ", min, " to ", max,
+                    value.size() == 1 ? str(", got ", value[0]) : str(", got ", value.size(), " numbers")));
+  return value[0];
 }
 
 Color3f editableColor(const std::string& owner, const std::string& name, const std::vector<double>& value) {

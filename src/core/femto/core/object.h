@@ -41,6 +41,10 @@ std::optional<ObjectKind> kindFromTag(std::string_view tag);
 /// A parameter value for setParameter as a colour (1 number: grey), checked
 /// finite and non-negative; errors name `owner` and `name`.
 Color3f editableColor(const std::string& owner, const std::string& name, const std::vector<double>& value);
+/// A parameter value for setParameter as one number in [min, max] (a whole
+/// number when `whole`); errors name `owner` and `name`.
+double editableNumber(const std::string& owner, const std::string& name, const std::vector<double>& value, double min,
+                      double max, bool whole = false);
 /// A colour as editableParameters reports it (3 numbers).
 inline std::vector<double> parameterValue(const Color3f& c) { return {double(c.r), double(c.g), double(c.b)}; }
 

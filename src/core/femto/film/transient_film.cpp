@@ -1,6 +1,7 @@
 #include <femto/film/transient_film.h>
 
 #include <cmath>
+#include <limits>
 
 #include <femto/base/error.h>
 #include <femto/core/resources.h>
@@ -114,20 +115,16 @@ TransientFilm::TransientFilm(const Properties& props, const TimeAxisSpelling& sp
 }
 
 void TransientFilm::setParameter(const std::string& name, const std::vector<double>& value) {
-  if (name != "start_opl" && name != "bin_width_opl" && name != "temporal_bins") return Film::setParameter(name, value);
-  if (value.size() != 1 || !std::isfinite(value[0]))
-    throw Error(str(toString(), ": \"", name, "\" takes one finite number"));
+  constexpr double Largest = std::numeric_limits<double>::max();
   TimeGrid grid = deposit_.grid();
-  if (name == "start_opl") grid.start = value[0];
-  if (name == "bin_width_opl") {
-    if (!(value[0] > 0.0)) throw Error(str(toString(), ": bin_width_opl must be positive, got ", value[0]));
-    grid.binWidth = value[0];
-  }
-  if (name == "temporal_bins") {
-    if (!(value[0] >= 1.0 && value[0] <= double(1 << 28) && value[0] == std::floor(value[0])))
-      throw Error(str(toString(), ": temporal_bins must be a whole number from 1, got ", value[0]));
-    grid.bins = int(value[0]);
-  }
+  if (name == "start_opl")
+    grid.start = editableNumber(toString(), name, value, -Largest, Largest);
+  else if (name == "bin_width_opl")
+    grid.binWidth = editableNumber(toString(), name, value, std::numeric_limits<double>::min(), Largest);
+  else if (name == "temporal_bins")
+    grid.bins = int(editableNumber(toString(), name, value, 1.0, double(1 << 28), true));
+  else
+    return Film::setParameter(name, value);
   deposit_ = TimeDeposit(grid, deposit_.filter(), deposit_.unboundedHorizon());
 }
 

@@ -107,6 +107,31 @@ void TransientSampleRecorder::commit(const Color3f& weight, float* bins, float* 
   }
 }
 
+namespace {
+
+/// One camera sample at film position `pos`: its ray, the integrator's
+/// contributions into `recorder` (cleared first), measured from the ray's
+/// time origin. Returns the sensor's weight (black: no ray, nothing recorded).
+Color3f recordCameraSample(const TransientRenderContext& context, const Point2f& pos, Sampler& sampler,
+                           TransientSampleRecorder& recorder) {
+  Ray ray;
+  const Color3f weight = context.scene.sensor().sampleRay(pos, sampler.next2D(), ray);
+  recorder.clear();
+  if (context.nearClipOrigin) recorder.setOrigin(nearClipOrigin(context.scene, ray));
+  if (!weight.isBlack()) context.integrator.sample(context.scene, ray, sampler, recorder);
+  return weight;
+}
+
+/// Continuous pulses: add each step's whole value to every bin from its start
+/// on (`bins` x 3 floats each; running sums in double, then once to float).
+void addStepRuns(float* binValues, const float* steps, int bins) {
+  double run[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < bins; ++k)
+    for (int c = 0; c < 3; ++c) binValues[k * 3 + c] += float(run[c] += steps[k * 3 + c]);
+}
+
+}  // namespace
+
 std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples, int threads) {
   const Scene& scene = context.scene;
   const Sensor& sensor = scene.sensor();
@@ -130,20 +155,15 @@ std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint
       const Point2f jitter = sampler->next2D();
       const Point2f pos(float(offset.x + int(p % uint64_t(crop.x))) + jitter.x,
                         float(offset.y + int(p / uint64_t(crop.x))) + jitter.y);
-      Ray ray;
-      const Color3f weight = sensor.sampleRay(pos, sampler->next2D(), ray);
-      if (weight.isBlack()) continue;
-      recorder.clear();
-      if (context.nearClipOrigin) recorder.setOrigin(nearClipOrigin(scene, ray));
-      context.integrator.sample(scene, ray, *sampler, recorder);
-      if (recorder.valid(weight)) recorder.commit(weight, sums.data(), steady, before, after, steps.data());
+      const Color3f weight = recordCameraSample(context, pos, *sampler, recorder);
+      if (!weight.isBlack() && recorder.valid(weight))
+        recorder.commit(weight, sums.data(), steady, before, after, steps.data());
     }
+    addStepRuns(sums.data(), steps.data(), bins);
     std::vector<double>& profile = chunkSums[size_t(c)];
     profile.assign(size_t(bins), 0.0);
-    double run[3] = {0.0, 0.0, 0.0};
     for (int b = 0; b < bins; ++b)
-      for (int ch = 0; ch < 3; ++ch)
-        profile[size_t(b)] += (double(sums[size_t(b) * 3 + ch]) + (run[ch] += steps[size_t(b) * 3 + ch])) / 3.0;
+      for (int ch = 0; ch < 3; ++ch) profile[size_t(b)] += double(sums[size_t(b) * 3 + ch]) / 3.0;
   };
   auto traceAll = [&] {
     ForkJoinEdges edges;
@@ -183,11 +203,7 @@ TransientTile::TransientTile(const Point2i& offset, const Point2i& size, const T
 
 bool TransientTile::addSample(const Point2i& pixel, const Point2f& pos, Sampler& sampler) {
   // Same sample order as SamplingIntegrator: aperture sample, then the integrator's.
-  Ray ray;
-  Color3f weight = context_.scene.sensor().sampleRay(pos, sampler.next2D(), ray);
-  recorder_.clear();
-  if (context_.nearClipOrigin) recorder_.setOrigin(nearClipOrigin(context_.scene, ray));
-  if (!weight.isBlack()) context_.integrator.sample(context_.scene, ray, sampler, recorder_);
+  const Color3f weight = recordCameraSample(context_, pos, sampler, recorder_);
   if (!recorder_.valid(weight)) return false;
   if (recorder_.hasSteps() && steps_.empty()) steps_.assign(volume_.size(), 0.0f);
   if (border_ > 0) {
@@ -235,14 +251,8 @@ void TransientTile::unpack(const float* data, size_t count) {
 
 void TransientTile::addSteps() {
   if (steps_.empty()) return;
-  // Continuous pulses: each step's whole value in every bin from its start on (in double, then once to float).
-  for (size_t i = 0; i < weight_.size(); ++i) {
-    float* b = &volume_[i * size_t(bins_) * 3];
-    const float* d = &steps_[i * size_t(bins_) * 3];
-    double run[3] = {0.0, 0.0, 0.0};
-    for (int k = 0; k < bins_; ++k)
-      for (int c = 0; c < 3; ++c) b[k * 3 + c] += float(run[c] += d[k * 3 + c]);
-  }
+  for (size_t i = 0; i < weight_.size(); ++i)
+    addStepRuns(&volume_[i * size_t(bins_) * 3], &steps_[i * size_t(bins_) * 3], bins_);
   steps_.clear();
 }
 
