@@ -59,6 +59,7 @@ BeamSettings BeamSettings::parse(const Properties& props) {
                                      {"points", VolumeEstimator::Points, "photon points, the beam radiance estimate"}});
   s.observerTime = props.getBool("observer_time", true);
   s.hideEmitters = props.getBool("hide_emitters", false);
+  s.timeSplitting = props.getBool("time_splitting", true);
   return s;
 }
 

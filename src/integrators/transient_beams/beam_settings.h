@@ -4,6 +4,7 @@
 // name the scene file and line of the offending parameter.
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <femto/base/error.h>
@@ -11,6 +12,7 @@
 #include <femto/math/bbox.h>
 #include <femto/math/constants.h>
 #include <femto/render/path_depth.h>
+#include <femto/time/time_levels.h>
 #include <transient_beams/beam.h>
 #include <transient_beams/beam_roulette.h>
 #include <transient_beams/radius_rule.h>
@@ -65,6 +67,11 @@ struct BeamSettings : PathDepthSettings {
   VolumeEstimator volumeEstimator = VolumeEstimator::Beams;
   bool observerTime = true;   // the camera segment counts toward the OPL
   bool hideEmitters = false;  // emitters seen directly appear black
+  /// time_splitting: photons are rouletted and split against the film's time
+  /// profile (time_levels.h) from pass 1 on, read by a pilot of pass 0's
+  /// camera samples (transient_beams.cpp); `timeLevels` holds it then.
+  bool timeSplitting = true;
+  std::shared_ptr<const TimeLevels> timeLevels;
   SourceLocation location;    // the <integrator> element, for errors found at render time
 
   /// Read and validate every parameter (unknown ones are the loader's business).

@@ -99,7 +99,9 @@ PhotonTracer::PhotonTracer(const Scene& scene, const BeamSettings& settings, dou
                                                                            : 0.0)
                                           : Infinity),
       emitterPower_(emitterPowerDistribution(scene)),
-      sampler_(std::make_unique<PhotonSampler>()) {
+      sampler_(std::make_unique<PhotonSampler>()),
+      levels_(settings.timeSplitting && settings.timeLevels && std::isfinite(horizon) ? settings.timeLevels.get()
+                                                                                     : nullptr) {
   for (const auto& emitter : scene.emitters()) atInfinity_.push_back(isAtInfinity(*emitter, scene.bbox().center()));
 }
 
@@ -117,6 +119,15 @@ struct PhotonTracer::Photon : OpticalPath {
   float startExtension = 0.0f;       // the next beam's Beam::before: it starts on a boundary (boundary_extension.h)
   Vec3f startOffsetDelay{0.0f};      // the next beam's Beam::offsetDelay (entered through an index change)
   float lastLeg = 0.0f;              // length of the segment that reached the current surface (SurfacePhoton::leg)
+  int splitProduct = 1;              // time_splitting: the product of its split factors so far
+};
+
+/// A copy split off at a scattering vertex: it samples its own direction on
+/// from there (on `si` when `onSurface`, else from its vertex in its medium).
+struct PhotonTracer::Pending {
+  Photon photon;
+  SurfaceInteraction si;
+  bool onSurface = false;
 };
 
 void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
@@ -126,6 +137,20 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   sampler.startPixel(seed, index);
   Photon ph;
   if (!emit(ph, sampler)) return;
+  pending_.clear();
+  follow(ph, sampler, beams, photons, storeBeams);
+  // Copies split off on the way (time_splitting), each from where it split,
+  // on the photon's own stream: the same whatever the thread.
+  while (!pending_.empty()) {
+    Pending p = pending_.back();
+    pending_.pop_back();
+    if (p.onSurface ? leaveSurface(p.photon, p.si, sampler) : leaveMediumVertex(p.photon, sampler))
+      follow(p.photon, sampler, beams, photons, storeBeams);
+  }
+}
+
+void PhotonTracer::follow(Photon& ph, Sampler& sampler, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
+                          bool storeBeams) {
   // The camera adds at least one segment to every photon path: a photon
   // segment `depth` ends paths of at least depth + 1 segments.
   for (int passThrough = 0;
@@ -225,7 +250,7 @@ MediumSample PhotonTracer::crossMedium(Photon& ph, bool hit, const SurfaceIntera
 }
 
 bool PhotonTracer::scatterInMedium(Photon& ph, const MediumSample& ms, const Color3f& arriving, bool store,
-                                   Sampler& sampler, std::vector<Beam>& beams) const {
+                                   Sampler& sampler, std::vector<Beam>& beams) {
   const Medium& medium = *ph.medium;
   ph.advance(ms.p);
   // A photon point: the light arriving here, before this vertex's delay and phase sampling.
@@ -237,16 +262,21 @@ bool PhotonTracer::scatterInMedium(Photon& ph, const MediumSample& ms, const Col
   const PhaseFunction& phase = medium.phase();
   if (phase.hasDelay()) ph.opl += phase.sampleDelay(sampler.next1D());
   if (!(ph.opl < horizon_) || !inReach(ph)) return false;
+  split(ph, nullptr);
+  return leaveMediumVertex(ph, sampler);
+}
+
+bool PhotonTracer::leaveMediumVertex(Photon& ph, Sampler& sampler) const {
   Vec3f wo;
   float pdf = 0.0f;
-  float weight = phase.sample(-ph.ray.d, sampler.next2D(), wo, pdf);
+  float weight = ph.medium->phase().sample(-ph.ray.d, sampler.next2D(), wo, pdf);
   if (!(pdf > 0.0f) || !(weight > 0.0f)) return false;
   ph.power *= weight;
-  ph.ray = Ray(ms.p, wo);
+  ph.ray = Ray(ph.vertex, wo);
   ph.scattered = ph.indirect = true;
   ph.clockAtFirstSurface = false;  // (a scene inside an unbounded medium: the clock ran from the disk)
   ++ph.depth;
-  return russianRoulette(ph.power, ph.depth, ph.startLevel, sampler);
+  return russianRoulette(ph, sampler);
 }
 
 double PhotonTracer::reachLimit(float eta) const {
@@ -269,7 +299,7 @@ bool PhotonTracer::reachSurface(Photon& ph, const SurfaceInteraction& si) const 
 }
 
 bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sampler& sampler,
-                                    std::vector<SurfacePhoton>& photons) const {
+                                    std::vector<SurfacePhoton>& photons) {
   const BSDF& bsdf = *si.bsdf();
   if (bsdf.hasSmooth() && ph.indirect) {
     Normal3f n = dot(si.n, ph.ray.d) < 0.0f ? si.n : -si.n;
@@ -278,6 +308,12 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   // A photon stored above has not scattered here yet: the camera side adds
   // this vertex's delay when it gathers it.
   if (bsdf.hasDelay()) ph.opl += bsdf.sampleDelay(sampler.next1D());
+  split(ph, &si);
+  return leaveSurface(ph, si, sampler);
+}
+
+bool PhotonTracer::leaveSurface(Photon& ph, const SurfaceInteraction& si, Sampler& sampler) const {
+  const BSDF& bsdf = *si.bsdf();
   BSDFSample bs;
   Color3f weight = bsdf.sample(si, sampler.next1D(), sampler.next2D(), bs, TransportMode::Importance);
   if (!(bs.pdf > 0.0f) || weight.isBlack()) return false;
@@ -292,15 +328,31 @@ bool PhotonTracer::scatterOnSurface(Photon& ph, const SurfaceInteraction& si, Sa
   else
     ph.scattered = ph.indirect = true;
   ++ph.depth;
-  return russianRoulette(ph.power, ph.depth, ph.startLevel, sampler);
+  return russianRoulette(ph, sampler);
 }
 
-bool PhotonTracer::russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const {
-  if (depth <= settings_.rrDepth) return true;
-  // Survival in proportion to the power left of what the photon started with.
-  float q = std::min(power.maxValue() / startLevel, 0.95f);
+float PhotonTracer::timeLevel(const Photon& ph) const {
+  if (!levels_ || ph.clockAtFirstSurface) return 1.0f;
+  // Its light reaches the camera no earlier than the straight way there (CameraReach).
+  return levels_->atFilm(ph.opl + (reach_.valid ? double(reach_.distance(ph.vertex)) : 0.0));
+}
+
+void PhotonTracer::split(Photon& ph, const SurfaceInteraction* si) {
+  if (!levels_) return;
+  const int n = TimeLevels::splitCount(ph.power.maxValue() / ph.startLevel / timeLevel(ph), ph.splitProduct);
+  if (n < 2) return;
+  ph.power = ph.power / float(n);
+  ph.splitProduct *= n;
+  for (int k = 1; k < n; ++k) pending_.push_back(Pending{ph, si ? *si : SurfaceInteraction(), si != nullptr});
+}
+
+bool PhotonTracer::russianRoulette(Photon& ph, Sampler& sampler) const {
+  if (ph.depth <= settings_.rrDepth) return true;
+  // Survival in proportion to the power left of what the photon started
+  // with, over the time level (time_splitting; 1 without).
+  float q = std::min(ph.power.maxValue() / ph.startLevel / timeLevel(ph), 0.95f);
   if (!(sampler.next1D() < q)) return false;
-  power = power / q;
+  ph.power = ph.power / q;
   return true;
 }
 

@@ -23,6 +23,12 @@
 // * Photons continue through index-matched boundaries, mirrors and glass
 //   (volume caustics), bounce off every BSDF (importance transport) and end
 //   by Russian roulette, at max_depth, or once their OPL passes the horizon.
+// * time_splitting (settings.timeLevels, from pass 1 on): the roulette
+//   compares a photon's power with the film's time level at the earliest OPL
+//   its light can reach the camera (time_levels.h), and a photon with n >= 2
+//   times that level splits at a scattering vertex into n copies of 1/n its
+//   power, each sampling its own direction, so late light gets as many
+//   beams as early light. Unbiased for any levels.
 //
 // Determinism: photon i of a pass draws its random numbers from its own
 // stream, seeded by (pass seed, i), and the pass concatenates per-block
@@ -72,6 +78,10 @@ class PhotonTracer {
 
  private:
   struct Photon;
+  struct Pending;
+  /// Follow `photon` from its current ray until it ends.
+  void follow(Photon& photon, Sampler& sampler, std::vector<Beam>& beams, std::vector<SurfacePhoton>& photons,
+              bool storeBeams);
   // The steps of trace(), in the photon's order; each false ends the photon.
   /// Pick an emitter (by power) and sample the photon's first ray.
   bool emit(Photon& photon, Sampler& sampler) const;
@@ -81,18 +91,30 @@ class PhotonTracer {
   MediumSample crossMedium(Photon& photon, bool hit, const SurfaceInteraction& si, bool store, Sampler& sampler,
                            std::vector<Beam>& beams, Color3f& arriving) const;
   /// A free flight ended in the medium: the photon point (when `store`), the
-  /// phase function's delay and direction, Russian roulette.
+  /// phase function's delay, time_splitting, the direction on, Russian roulette.
   bool scatterInMedium(Photon& photon, const MediumSample& ms, const Color3f& arriving, bool store, Sampler& sampler,
-                       std::vector<Beam>& beams) const;
+                       std::vector<Beam>& beams);
   /// The photon reached surface `si`: its clock advances (or starts, from an
   /// emitter at infinity); false past the horizon.
   bool reachSurface(Photon& photon, const SurfaceInteraction& si) const;
   /// A scattering surface: the surface photon (smooth BSDF, indirect light
-  /// only), the BSDF's delay and direction (importance transport), Russian roulette.
+  /// only), the BSDF's delay, time_splitting, the direction on, Russian roulette.
   bool scatterOnSurface(Photon& photon, const SurfaceInteraction& si, Sampler& sampler,
-                        std::vector<SurfacePhoton>& photons) const;
-  /// Russian roulette past rr_depth segments; false ends the photon.
-  bool russianRoulette(Color3f& power, int depth, float startLevel, Sampler& sampler) const;
+                        std::vector<SurfacePhoton>& photons);
+  /// Sample the direction on from a medium vertex (the photon's vertex, its
+  /// ray still the one arriving), then Russian roulette.
+  bool leaveMediumVertex(Photon& photon, Sampler& sampler) const;
+  /// Sample the direction on from surface `si` (BSDF, importance transport), then Russian roulette.
+  bool leaveSurface(Photon& photon, const SurfaceInteraction& si, Sampler& sampler) const;
+  /// time_splitting at a scattering vertex, before the direction on is
+  /// sampled: n - 1 copies (on `si` when not null, else in the medium) wait
+  /// in pending_; the photon keeps 1/n of its power.
+  void split(Photon& photon, const SurfaceInteraction* si);
+  /// The time level at the photon's vertex (1 without time_splitting).
+  float timeLevel(const Photon& photon) const;
+  /// Russian roulette past rr_depth segments, on the power relative to the
+  /// emitted power and the time level; false ends the photon.
+  bool russianRoulette(Photon& photon, Sampler& sampler) const;
   /// The OPL past which light of a photon in a medium of index `eta` can
   /// no longer land in the window anywhere its kernels reach: the horizon
   /// plus (eta + 1) kernel radii (a camera point within r of a beam or
@@ -110,6 +132,8 @@ class PhotonTracer {
   Distribution1D emitterPower_;
   std::vector<bool> atInfinity_;  // per emitter: directional or environment (photons' clock starts at a surface)
   std::unique_ptr<Sampler> sampler_;
+  const TimeLevels* levels_;      // time_splitting's levels, or null
+  std::vector<Pending> pending_;  // copies split off, still to be followed
 };
 
 /// All photons of one pass (settings.photonCount), traced in parallel.

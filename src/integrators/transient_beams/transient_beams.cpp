@@ -51,6 +51,10 @@
 // |                |         |                | at scattering vertices, beam radiance estimate, 2D kernel:|        |
 // |                |         |                | radius, alpha and beam_photon_count then apply to points) |        |
 // | observer_time  | boolean | true           | include the camera segment in the OPL                     | -      |
+// | time_splitting | boolean | true           | transient films, from pass 1 on: roulette and split       | -      |
+// |                |         |                | photons against the film's time profile (a pilot of pass  |        |
+// |                |         |                | 0's camera samples), so late light gets as many beams as  |        |
+// |                |         |                | early light (false: roulette on the power alone)          |        |
 // | hide_emitters  | boolean | false          | emitters seen directly appear black                       | -      |
 // ("diagonal": of the scene's bounding box.) At the end of a render one log
 // line gives the work done (beams, camera segments, ray x beam tests and pair
@@ -65,10 +69,12 @@
 #include <femto/core/plugin.h>
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_render.h>
+#include <femto/film/transient_tile.h>
 #include <femto/loop/render_loop.h>
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
+#include <femto/time/time_levels.h>
 #include <transient_beams/beam_pass.h>
 #include <transient_beams/beam_settings.h>
 #include <transient_beams/boundary_coverage.h>
@@ -209,6 +215,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           logInfo("transient_beams: surface time width ", settings.surfaceTimeWidth, " (OPL)");
         }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced), &scene, horizon);
+        if (pass == 0 && settings.passes > 1) settings.timeLevels = timeLevels(scene, *previous, options);
       };
       // Photons are traced with the thread count the user asked for.
       if (options.threads > 0) {
@@ -228,6 +235,27 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     return stats;
   }
 
+  /// time_splitting: the film's time profile from a pilot of pass 0's camera
+  /// samples (pilotTimeProfile; a quarter of a pass's, 256 to 4096), as
+  /// transient_path reads its own; the photons of passes 1 on are rouletted
+  /// and split against it (photon_tracer.h). Null without a transient film.
+  std::shared_ptr<const TimeLevels> timeLevels(const Scene& scene, const beams::BeamPass& first,
+                                               const RenderOptions& options) const {
+    const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
+    if (!settings_.timeSplitting || !film) return nullptr;
+    const TimeGrid& window = film->timeGrid();
+    const TimeGrid axis = TimeLevels::pilotAxis(window, TimeLevels::PilotBins);
+    const TimeDeposit deposit(axis, TimeFilter::box());
+    const TransientRenderContext context{scene, first, deposit, film->nearClipOrigin() && settings_.observerTime};
+    const int samples = TimeLevels::pilotSamples(double(film->cropSize().x) * double(film->cropSize().y) *
+                                                 double(scene.sensor().sampler().sampleCount()));
+    auto levels = std::make_shared<TimeLevels>(TimeLevels::fromProfile(
+        pilotTimeProfile(context, mixSeed(options.seed, PilotSeedSalt), samples, options.threads), axis,
+        window.start));
+    if (levels->level.empty()) return nullptr;
+    return levels;
+  }
+
   std::string toString() const override {
     return str("TransientBeamsIntegrator[passes=", settings_.passes, ", photon_count=", settings_.photonCount,
                ", radius=", settings_.radius, ", surface_radius=", settings_.surfaceRadius,
@@ -240,6 +268,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
 
  private:
   beams::BeamSettings settings_;
+  static constexpr uint64_t PilotSeedSalt = 0x6265'616d'7069'6c6full;
 };
 
 }  // namespace femto

@@ -52,6 +52,7 @@
 #include <femto/render/sampler.h>
 #include <femto/render/scene.h>
 #include <femto/render/transient_integrator.h>
+#include <femto/time/time_levels.h>
 #include <femto/transport/direct_lighting.h>
 #include <femto/transport/equiangular.h>
 #include <femto/transport/optical_path.h>
@@ -131,55 +132,6 @@ struct PathState : OpticalPath {
   int splitProduct = 1;
 };
 
-/// time_splitting's weight window over the time axis from OPL 0 (or the
-/// window's start, if earlier) to the window's end, in the film's OPL: per
-/// bin of that axis, the level a path's throughput is compared with there,
-/// the mean of the profile over the bins from there to the end (what the
-/// path can still reach) over the largest such mean, clamped to [1/64, 1]
-/// (never more roulette than Mitsuba's rule; at most 64 times its survival),
-/// and 1 up to the bin of that largest mean. The axis starts at 0, not at the
-/// window, so a window's render rations its paths as a render of a longer
-/// window does over the same times. Empty: no profile.
-struct TimeLevels {
-  TimeGrid axis;
-  double windowStart = 0.0;  // the film's grid start (a camera ray's grid is shifted by its time origin)
-  std::vector<float> level;
-
-  /// The pilot's axis for a film window: at most `maxBins` bins, none narrower than the window's.
-  static TimeGrid pilotAxis(const TimeGrid& window, int maxBins) {
-    TimeGrid axis;
-    axis.start = std::min(0.0, window.start);
-    const double span = window.end() - axis.start;
-    axis.bins = int(std::clamp(std::ceil(span / window.binWidth), 1.0, double(maxBins)));
-    axis.binWidth = span / axis.bins;
-    return axis;
-  }
-  static TimeLevels fromProfile(const std::vector<double>& profile, const TimeGrid& axis, double windowStart) {
-    TimeLevels t;
-    const size_t bins = profile.size();
-    if (bins == 0) return t;
-    std::vector<double> tail(bins);
-    double sum = 0.0;
-    for (size_t k = bins; k-- > 0;) tail[k] = (sum += std::max(profile[k], 0.0)) / double(bins - k);
-    const size_t peak = size_t(std::max_element(tail.begin(), tail.end()) - tail.begin());
-    if (!(tail[peak] > 0.0) || !std::isfinite(tail[peak])) return t;
-    t.axis = axis;
-    t.windowStart = windowStart;
-    t.level.resize(bins);
-    for (size_t k = 0; k < bins; ++k)
-      t.level[k] = k <= peak ? 1.0f : float(std::clamp(tail[k] / tail[peak], 1.0 / 64.0, 1.0));
-    return t;
-  }
-  /// The level at OPL `opl` of a camera ray whose film grid is `grid`: 1
-  /// past the window's end too, where a path (traced on for the steady image,
-  /// complete_steady) reaches no bin.
-  float at(const TimeGrid& grid, double opl) const {
-    if (level.empty()) return 1.0f;
-    const double k = std::floor((opl - (grid.start - windowStart) - axis.start) / axis.binWidth);
-    return k < 0.0 || k >= double(level.size()) ? 1.0f : level[size_t(k)];
-  }
-};
-
 }  // namespace
 
 /// Defaults that differ between the names this integrator is known by.
@@ -227,14 +179,11 @@ class TransientPathIntegrator : public TransientIntegrator {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
     if (!timeSplitting_ || !film || depth_.maxDepth == 0) return TransientIntegrator::render(scene, options);
     const TimeGrid& window = film->timeGrid();
-    const TimeGrid axis = TimeLevels::pilotAxis(window, PilotBins);
+    const TimeGrid axis = TimeLevels::pilotAxis(window, TimeLevels::PilotBins);
     const TimeDeposit deposit(axis, TimeFilter::box());
     TransientRenderContext context{scene, *this, deposit, film->nearClipOrigin() && observerTime_};
-    // A quarter of one pass's camera samples at most, so a small render does
-    // not pay more for its pilot than for itself.
-    const double passSamples =
-        double(film->cropSize().x) * double(film->cropSize().y) * double(scene.sensor().sampler().sampleCount());
-    const int samples = int(std::clamp(passSamples / 4.0, double(MinPilotSamples), double(MaxPilotSamples)));
+    const int samples = TimeLevels::pilotSamples(double(film->cropSize().x) * double(film->cropSize().y) *
+                                                 double(scene.sensor().sampler().sampleCount()));
     auto configured = std::make_shared<TransientPathIntegrator>(*this);
     configured->levels_ = TimeLevels::fromProfile(
         pilotTimeProfile(context, options.seed ^ PilotSeedSalt, samples, options.threads), axis, window.start);
@@ -869,7 +818,7 @@ class TransientPathIntegrator : public TransientIntegrator {
                      ContinueFn&& continueFrom) const {
     if (!levels_.level.empty()) {
       const float ratio = relativeThroughput(s, recorder.timeGrid());
-      const int n = int(std::min({ratio, float(MaxSplit), float(MaxSplitProduct / s.splitProduct)}));
+      const int n = TimeLevels::splitCount(ratio, s.splitProduct);
       if (n >= 2) {
         s.throughput = s.throughput / float(n);
         s.splitProduct *= n;
@@ -902,12 +851,7 @@ class TransientPathIntegrator : public TransientIntegrator {
   }
 
   static constexpr float RouletteCap = 0.99f;  // russianRoulette
-  // time_splitting: at most this many copies at one vertex and in all of a
-  // camera sample's path; the pilot's camera samples and their seed.
-  static constexpr int MaxSplit = 8;
-  static constexpr int MaxSplitProduct = 16;
-  static constexpr int MinPilotSamples = 256, MaxPilotSamples = 4096;
-  static constexpr int PilotBins = 4096;
+  // time_splitting: the pilot's seed.
   static constexpr uint64_t PilotSeedSalt = 0x7069'6c6f'7421'5eedull;
   PathDepthSettings depth_;
   bool hideEmitters_;

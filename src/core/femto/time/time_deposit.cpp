@@ -39,6 +39,34 @@ void fillShares(double uLo, double uHi, double radius, int bins, const Cdf& G, B
   }
 }
 
+/// fillShares for the box filter and a box [u0, u0 + L] (L > 0): the same
+/// shares, G(a) = clamp((a - u0) / L, 0, 1) (boxesCdf with radius 0), without
+/// its calls per bin. Most deposits are of this kind (photon-beam pairs,
+/// surface photons' time kernel), and the render spends ~10 % of its time
+/// here.
+void fillBoxShares(double u0, double L, int bins, BinShares& out) {
+  auto G = [u0, L](double a) {
+    const double x = a - u0;
+    return x >= L ? 1.0 : (x <= 0.0 ? 0.0 : std::min(x / L, 1.0));
+  };
+  out.weights.clear();
+  out.first = 0;
+  out.stepFrom = -1;
+  out.before = G(0.0);
+  out.after = 1.0 - G(double(bins));
+  const double lo = std::max(0.0, std::floor(u0)), hi = std::min(double(bins - 1), std::floor(u0 + L));
+  if (!(lo <= hi)) return;
+  out.first = int(lo);
+  const int n = int(hi) - int(lo) + 1;
+  out.weights.resize(size_t(n));
+  double prev = G(lo);
+  for (int k = 0; k < n; ++k) {
+    const double next = G(lo + double(k + 1));
+    out.weights[size_t(k)] = next - prev;
+    prev = next;
+  }
+}
+
 /// CDF at `a` (bins) of: uniform on [u0, u0 + L], convolved with uniform on
 /// [0, w], convolved with the kernel of `f` (L and/or w may be 0: a point, one
 /// box). Differences of K, K1, K2 (see the header).
@@ -147,6 +175,7 @@ void TimeDeposit::point(double opl, BinShares& out) const {
 void TimeDeposit::interval(double opl0, double opl1, BinShares& out) const {
   double u0 = toBins(std::min(opl0, opl1)), L = toBins(std::max(opl0, opl1)) - u0, w = 0.0;
   collapseShortBoxes(u0, L, w, filter_.radius());  // below ~1e-9 bins: a point at the midpoint
+  if (filter_.type() == TimeFilter::Type::Box && L > 0.0) return fillBoxShares(u0, L, grid_.bins, out);
   fillShares(u0, u0 + L, filter_.radius(), grid_.bins, [&](double a) { return boxesCdf(filter_, u0, L, 0.0, a); }, out);
 }
 
