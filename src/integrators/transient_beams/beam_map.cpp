@@ -47,6 +47,9 @@ namespace {
 struct Piece {
   BoundingBox3f box;
   uint32_t beam = 0;
+  /// Time gating: no pair found through this piece deposits later than
+  /// (camera OPL at the segment's origin) + eta_c tMax + this (pieceOplBound).
+  float oplMax = 0.0f;
 };
 
 // 32-byte node. Interior (count == 0): the left child is the next node, the
@@ -68,8 +71,9 @@ struct alignas(16) Node4 {
   float hi[3][4];
   uint32_t index[4];
   uint32_t count[4];
+  float oplMax[4];  // the largest Piece::oplMax under each lane (time gating)
 };
-static_assert(sizeof(Node4) == 128);
+static_assert(sizeof(Node4) == 144);
 constexpr uint32_t EmptyLane = std::numeric_limits<uint32_t>::max();
 
 constexpr int SahBins = 16;
@@ -275,6 +279,39 @@ uint32_t collapse(const std::vector<Node>& binary, const std::vector<Piece>& pie
   return self;
 }
 
+/// Piece::oplMax for the piece of `beam` ending at parameter `end` (its
+/// extension past the end included): a camera point x within the radius of
+/// the piece lies within max(end, before r) + r of the beam's origin, and a
+/// pair's OPL there (ray_beam.h, PairOpl: the continuation from the beam's
+/// start, or the tilted wavefront) is at most beam.opl + (eta + |offsetDelay|)
+/// times that. Rounded up to a float, with a margin for the rounding of the
+/// pair's own OPL.
+float pieceOplBound(const Beam& beam, float end, float radius) {
+  const double od = std::sqrt(double(dot(beam.offsetDelay, beam.offsetDelay)));
+  const double reach = std::max(double(end), double(beam.before) * radius) + double(radius);
+  const double bound = beam.opl + (double(beam.eta) + od) * reach;
+  const double padded = bound + 1e-5 * (std::abs(bound) + 1.0);
+  float f = float(padded);
+  if (double(f) < padded) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+/// Fill Node4::oplMax bottom-up from node `at`; returns the node's largest.
+float laneOplBounds(std::vector<Node4>& nodes, const std::vector<Piece>& pieces, uint32_t at) {
+  float all = -std::numeric_limits<float>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t count = nodes[at].count[i], index = nodes[at].index[i];
+    float m = -std::numeric_limits<float>::infinity();
+    if (count == 0)
+      m = laneOplBounds(nodes, pieces, index);
+    else if (count != EmptyLane)
+      for (uint32_t p = index; p < index + count; ++p) m = std::max(m, pieces[p].oplMax);
+    nodes[at].oplMax[i] = m;
+    all = std::max(all, m);
+  }
+  return all;
+}
+
 void checkBeam(const Beam& beam, size_t index) {
   if (!isFinite(beam.origin) || !isFinite(beam.direction) || !std::isfinite(beam.length) || beam.length < 0.0f ||
       !(beam.before >= 0.0f && beam.before <= MaxBoundaryExtension) ||
@@ -416,6 +453,7 @@ BeamMap::BeamMap(std::vector<Beam> beams, float radius, const BeamMapOptions& op
       piece.box.min -= pad;
       piece.box.max += pad;
       piece.beam = uint32_t(i);
+      piece.oplMax = pieceOplBound(beam, t1, radius);
       pieces.push_back(piece);
     }
   }
@@ -423,6 +461,7 @@ BeamMap::BeamMap(std::vector<Beam> beams, float radius, const BeamMapOptions& op
     std::vector<Node> sparse(2 * pieces.size() - 1);
     Builder(pieces, sparse, options).build(0, pieces.size(), 0, 0);
     collapse(sparse, pieces, {laneOf(sparse, 0)}, impl->nodes);
+    laneOplBounds(impl->nodes, pieces, 0);
     impl->nodes.shrink_to_fit();
     inLeafOrder(beams_, pieces);
   }
@@ -526,7 +565,7 @@ struct SegmentSlabs {
 }  // namespace
 
 template <typename Report>
-void BeamMap::traverse(const CameraSegment& segment, Report&& report) const {
+void BeamMap::traverse(const CameraSegment& segment, float minOpl, Report&& report) const {
   if (!impl_ || impl_->nodes.empty() || !(segment.tMax >= 0.0f)) return;
   // A NaN would make every slab test pass: a broken segment finds nothing.
   if (!isFinite(segment.ray.o) || !isFinite(segment.ray.d)) return;
@@ -539,6 +578,9 @@ void BeamMap::traverse(const CameraSegment& segment, Report&& report) const {
   while (top > 0) {
     const Node4& node = nodes[stack[--top]];
     unsigned mask = s.hits4(node);
+    // Time gating: lanes whose pieces all deposit before minOpl.
+    for (int i = 0; i < 4; ++i)
+      if (!(node.oplMax[i] >= minOpl)) mask &= ~(1u << i);
     // Lanes in order 0..3, inner nodes pushed in reverse so that lane 0's
     // subtree is walked first: a fixed order, so deterministic results.
     for (int i = 3; i >= 0; --i)
@@ -550,14 +592,15 @@ void BeamMap::traverse(const CameraSegment& segment, Report&& report) const {
       // A one-piece lane's box is its piece's, already tested.
       const uint32_t first = node.index[i];
       for (uint32_t p = first; p < first + count; ++p)
-        if (count == 1 || s.hits(pieces[p].box.min, pieces[p].box.max)) report(pieces[p]);
+        if (count == 1 || (pieces[p].oplMax >= minOpl && s.hits(pieces[p].box.min, pieces[p].box.max)))
+          report(pieces[p]);
     }
   }
 }
 
 void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) const {
   out.clear();
-  traverse(segment, [&](const Piece& piece) {
+  traverse(segment, -std::numeric_limits<float>::infinity(), [&](const Piece& piece) {
     const uint32_t beam = piece.beam;
     // Neighbouring pieces of one beam often share a leaf or a subtree:
     // dropping repeats here shrinks the sort below.
@@ -569,7 +612,7 @@ void BeamMap::query(const CameraSegment& segment, std::vector<uint32_t>& out) co
 }
 
 size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                              Cull cull) const {
+                              Cull cull, double minOpl) const {
   out.clear();
   if (marks.mark.size() != beams_.size() || marks.query == std::numeric_limits<uint32_t>::max()) {
     marks.mark.assign(beams_.size(), 0);
@@ -578,7 +621,11 @@ size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t
   const uint32_t stamp = ++marks.query;
   uint32_t* mark = marks.mark.data();
   size_t crossed = 0;
-  traverse(segment, [&](const Piece& piece) {
+  // Rounded down to a float: never prunes a piece the double would keep.
+  float floor = float(minOpl);
+  if (double(floor) > minOpl) floor = std::nextafter(floor, -std::numeric_limits<float>::infinity());
+  if (std::isnan(minOpl)) floor = -std::numeric_limits<float>::infinity();
+  traverse(segment, floor, [&](const Piece& piece) {
     ++crossed;
     if (mark[piece.beam] == stamp) return;
     mark[piece.beam] = stamp;

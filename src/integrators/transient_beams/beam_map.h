@@ -12,6 +12,7 @@
 // docs/BENCHMARKS.md ("Beam map") and docs/design/photon-beams.md ("Culling:
 // the line test"); the build is parallel but deterministic (same beams, same tree).
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <transient_beams/beam.h>
@@ -87,8 +88,14 @@ class BeamMap {
   /// matters when a segment meets hundreds of beams (the camera side's hot
   /// loop). `marks` is sized on first use. Returns how many piece boxes the
   /// segment crossed (the map's work; statistics).
+  ///
+  /// Time gating: with `minOpl` finite, pieces none of whose pairs can
+  /// deposit at or after (camera OPL at the segment's origin) + eta_c tMax +
+  /// minOpl are skipped (each piece and BVH lane keeps the bound, beam_map.cpp
+  /// pieceOplBound). Every beam with a pair that deposits later is still
+  /// reported; beams whose pairs all deposit earlier may be, or not.
   size_t queryUnsorted(const CameraSegment& segment, std::vector<uint32_t>& out, VisitMarks& marks,
-                       Cull cull = Cull::Boxes) const;
+                       Cull cull = Cull::Boxes, double minOpl = -std::numeric_limits<double>::infinity()) const;
 
   /// BeamMapOptions::crossingDensity for `beams` at `radius` from sample
   /// segments standing for the queries, each for `weight` real ones (probe
@@ -117,8 +124,9 @@ class BeamMap {
 
   /// Calls report(piece) for every piece whose box the segment crosses (a
   /// beam once per piece hit), in traversal order.
+  /// (and whose OPL bound is at least `minOpl`)
   template <typename Report>
-  void traverse(const CameraSegment& segment, Report&& report) const;
+  void traverse(const CameraSegment& segment, float minOpl, Report&& report) const;
 };
 
 }  // namespace femto::beams

@@ -71,6 +71,11 @@ struct BeamSettings : PathDepthSettings {
   /// profile (time_levels.h) from pass 1 on, read by a pilot of pass 0's
   /// camera samples (transient_beams.cpp); `timeLevels` holds it then.
   bool timeSplitting = true;
+  /// time_gating: the camera side skips what lands wholly before the film's
+  /// window but a before_window_rate share of it, weighted by its inverse
+  /// (camera_tracer.h, WindowGate; the map skips such beam pieces).
+  bool timeGating = true;
+  float beforeWindowRate = 0.125f;
   std::shared_ptr<const TimeLevels> timeLevels;
   SourceLocation location;    // the <integrator> element, for errors found at render time
 

@@ -110,7 +110,7 @@ bool CameraTracer::scatterOnSurface(const Scene& scene, Path& s, const SurfaceIn
   }
   if (bsdf.hasSmooth()) {
     nextEvent(scene, s, si, sampler, recorder);
-    gatherSurfacePhotons(scene, s, si, recorder);
+    gatherSurfacePhotons(scene, s, si, sampler, recorder);
     if (!(bsdf.flags() & BSDFFlags::Delta)) return false;
   }
   return followSpecular(s, si, sampler);
@@ -159,16 +159,22 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   // geometry is known, T_beam aside (a point's power already holds it).
   const bool points = settings_.volumeEstimator == VolumeEstimator::Points;
   const std::vector<Beam>& beams = maps_.beams.beams();
+  const PhaseFunction& phase = medium.phase();
+  // Time gating: beams (not photon points) without scattering delays.
+  const WindowGate gate =
+      points || phase.hasDelay() ? WindowGate() : windowGate(scene, recorder, sampler);
+  // The map skips pieces whose pairs all land before the window (beam_map.h).
+  const double minOpl = gate.dropBefore ? gate.windowStart - gate.late - s.opl - double(segment.eta) * segment.tMax
+                                        : -Infinity;
   // Beams: the map also drops those whose axis the segment's line passes
   // beyond the radius (beam_map.h, Cull::Lines).
-  stats_.piecesCrossed +=
-      maps_.beams.queryUnsorted(segment, scratch_, marks_, points ? BeamMap::Cull::Boxes : BeamMap::Cull::Lines);
+  stats_.piecesCrossed += maps_.beams.queryUnsorted(segment, scratch_, marks_,
+                                                    points ? BeamMap::Cull::Boxes : BeamMap::Cull::Lines, minOpl);
   ++stats_.segments;
   stats_.candidates += scratch_.size();
   const double horizon = recorder.horizon();
   const double pieceTolerance = recorder.timeGrid().bins > 0 ? 0.125 * recorder.timeGrid().binWidth : 0.0;
   const double invPhotons = 1.0 / double(maps_.beamPhotonCount);
-  const PhaseFunction& phase = medium.phase();
   for (uint32_t index : scratch_) {
     const Beam& beam = beams[index];
     // Beams of another medium overlapping this one (nested media) do not scatter here.
@@ -179,11 +185,14 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     const bool near = points ? rayPointIntersect(segment, beam, maps_.beamRadius, hit)
                              : rayBeamIntersect(segment, beam, maps_.beamRadius, hit);
     if (!near || !(hit.kernel > 0.0f)) continue;
+    // Wholly before the window: skipped, or weighted (one draw per gather).
+    const bool before = gate.before(opl0 + hit.oplEnd);
+    if (before && gate.dropBefore) continue;
     const Point3f x = segment.ray(hit.tRay);
     float fp = phase.eval(-s.ray.d, -beam.direction);
     if (!(fp > 0.0f)) continue;
     Color3f value = s.throughput * medium.scatteringCoefficient(x) * fp * beam.power *
-                    float(double(hit.kernel) * invPhotons * gatherWeight);
+                    float(double(hit.kernel) * invPhotons * gatherWeight * (before ? gate.beforeWeight : 1.0));
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler) * roulette.inverseSurvival(hit.tRay);
     if (!points) {
@@ -237,8 +246,31 @@ void CameraTracer::nextEvent(const Scene& scene, const Path& s, const SurfaceInt
                      ds.emitter->pulse());
 }
 
+CameraTracer::WindowGate CameraTracer::windowGate(const Scene& scene, RadianceRecorder& recorder,
+                                                 Sampler& sampler) const {
+  WindowGate gate;
+  const TimeGrid& grid = recorder.timeGrid();
+  const double horizon = recorder.horizon();
+  if (!settings_.timeGating || grid.bins <= 0 || !std::isfinite(grid.start) || !std::isfinite(horizon) ||
+      !(settings_.beforeWindowRate < 1.0f))
+    return gate;
+  // The horizon is the window's end plus the time filter's reach.
+  double latest = 0.0;
+  for (const auto& emitter : scene.emitters()) latest = std::max(latest, emitter->pulse().latest());
+  if (!std::isfinite(latest)) return gate;  // a continuous pulse: everything reaches the window
+  gate.active = true;
+  gate.windowStart = grid.start;
+  gate.late = latest + (horizon - grid.end());
+  const float rate = settings_.beforeWindowRate;
+  if (rate > 0.0f && sampler.next1D() < rate)
+    gate.beforeWeight = 1.0 / double(rate);
+  else
+    gate.dropBefore = true;
+  return gate;
+}
+
 void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const SurfaceInteraction& si,
-                                        RadianceRecorder& recorder) {
+                                        Sampler& sampler, RadianceRecorder& recorder) {
   const float r = maps_.surfaceRadius;
   maps_.photons.query(si.p, r, scratch_);
   ++stats_.surfaceQueries;
@@ -252,12 +284,16 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
   // it holds no photons), counted once a photon contributes.
   double norm = 0.0;
   const double horizon = recorder.horizon();
+  const WindowGate gate = windowGate(scene, recorder, sampler);
   for (uint32_t index : scratch_) {
     const SurfacePhoton& photon = maps_.photons.photons()[index];
     if (dot(photon.n, side) <= 0.0f || !settings_.depthAllowed(s.segments + photon.depth)) continue;
     // Timed along the photon's last leg to this point (surface_photon_map.h).
     const double opl = s.opl + photon.opl + lastLegDelay(photon, si.p);
     if (!(opl < horizon)) continue;
+    // Wholly before the window: skipped, or weighted (one draw per gather).
+    const bool before = gate.before(opl + maps_.surfaceTimeWidth);
+    if (before && gate.dropBefore) continue;
     Vec3f local = si.toLocal(photon.wi);
     float cosine = std::abs(local.z);
     if (cosine < MinPhotonCosine) continue;
@@ -268,7 +304,8 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
       norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
                     std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
     // Spread over the causal time kernel [opl, opl + w] (beam_settings.h).
-    recorder.addPulsed(opl, opl + maps_.surfaceTimeWidth, s.throughput * f * photon.power * float(norm),
+    recorder.addPulsed(opl, opl + maps_.surfaceTimeWidth,
+                       s.throughput * f * photon.power * float(norm * (before ? gate.beforeWeight : 1.0)),
                        scene.emitters()[photon.emitter]->pulse());
   }
 }

@@ -124,11 +124,26 @@ class CameraTracer {
   /// Sample the BSDF at `si`; true (and the path turned) for a specular
   /// component within max_depth.
   bool followSpecular(Path& path, const SurfaceInteraction& si, Sampler& sampler) const;
+  /// Time gating (time_gating; docs/design/photon-beams.md, "Time gating"):
+  /// one draw per gather decides whether the deposits that land wholly
+  /// before the film's window are made this time (weighted by 1 /
+  /// before_window_rate) or skipped; inactive on steady films, with
+  /// continuous pulses or an unbounded horizon.
+  struct WindowGate {
+    bool active = false;
+    bool dropBefore = false;    // skip what lands before the window (else weigh it by beforeWeight)
+    double beforeWeight = 1.0;
+    double windowStart = 0.0;   // a deposit ending before windowStart - late lands before the window
+    double late = 0.0;          // the latest pulse's end plus the time filter's reach
+    /// True when a deposit over an OPL range ending at `end` lands wholly before the window.
+    bool before(double end) const { return active && end + late < windowStart; }
+  };
+  WindowGate windowGate(const Scene& scene, RadianceRecorder& recorder, Sampler& sampler) const;
   // The estimates along the way.
   void gatherBeams(const Scene& scene, const Path& path, float tMax, Sampler& sampler, RadianceRecorder& recorder);
   void nextEvent(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                  RadianceRecorder& recorder);
-  void gatherSurfacePhotons(const Scene& scene, const Path& path, const SurfaceInteraction& si,
+  void gatherSurfacePhotons(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                             RadianceRecorder& recorder);
 
   const BeamSettings& settings_;

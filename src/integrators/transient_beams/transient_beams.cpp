@@ -55,6 +55,12 @@
 // |                |         |                | photons against the film's time profile (a pilot of pass  |        |
 // |                |         |                | 0's camera samples), so late light gets as many beams as  |        |
 // |                |         |                | early light (false: roulette on the power alone)          |        |
+// | time_gating    | boolean | true           | transient films: the camera side skips estimates landing  | -      |
+// |                |         |                | wholly before the window (the map skips such beam pieces) |        |
+// |                |         |                | but for before_window_rate of them, weighted by its       |        |
+// |                |         |                | inverse (the steady and _before images stay unbiased)     |        |
+// | before_window_rate | float | 0.125        | that share (0: skip them all; steady and _before then     | -      |
+// |                |         |                | lack that light)                                          |        |
 // | hide_emitters  | boolean | false          | emitters seen directly appear black                       | -      |
 // ("diagonal": of the scene's bounding box.) At the end of a render one log
 // line gives the work done (beams, camera segments, ray x beam tests and pair

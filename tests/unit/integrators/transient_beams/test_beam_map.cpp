@@ -551,5 +551,58 @@ TEST(BeamMap, RejectsBadInput) {
   EXPECT_THROW(BeamMap({ok}, 0.1f, options), Error);
 }
 
+// Time gating (beam_map.h, queryUnsorted's minOpl): every beam with a pair
+// whose OPL at the overlap's end, less the camera's share there, reaches
+// minOpl is still reported, whatever the beam's extensions past its ends and
+// its tilted wavefront (offsetDelay); and the bound prunes: a threshold
+// past half the beams' OPLs drops many of the rest.
+TEST(BeamMap, TimeGatedQueryKeepsEveryPairThatCanLandInTheWindow) {
+  PCG32 rng(47, 3);
+  std::vector<Beam> beams;
+  for (int i = 0; i < 3000; ++i) {
+    Beam b = makeBeam(randomPoint(rng), randomDirection(rng), 2.0f * rng.nextFloat());
+    b.opl = 10.0 * rng.nextFloat();
+    b.eta = 1.0f + 0.5f * rng.nextFloat();
+    if (i % 3 == 0) b.before = 2.0f * rng.nextFloat(), b.after = 2.0f * rng.nextFloat();
+    if (i % 5 == 0) b.offsetDelay = randomDirection(rng) * (0.3f * rng.nextFloat());
+    beams.push_back(b);
+  }
+  const float radius = 0.03f;
+  BeamMap map(beams, radius);
+  BeamMap::VisitMarks marks;
+  std::vector<uint32_t> all, gated, edge;
+  size_t kept = 0, pairs = 0, allCount = 0, gatedCount = 0;
+  for (int i = 0; i < 400; ++i) {
+    CameraSegment seg = randomSegment(rng);
+    seg.eta = i % 4 == 0 ? 0.0f : 1.0f + 0.3f * rng.nextFloat();
+    const double minOpl = 12.0 * rng.nextFloat();
+    map.queryUnsorted(seg, all, marks, BeamMap::Cull::Boxes);
+    map.queryUnsorted(seg, gated, marks, BeamMap::Cull::Boxes, minOpl);
+    std::sort(gated.begin(), gated.end());
+    allCount += all.size(), gatedCount += gated.size();
+    for (uint32_t b : all) {
+      const Beam& beam = map.beams()[b];
+      RayBeamHit hit;
+      if (!rayBeamIntersect(seg, beam, radius, hit)) continue;
+      ++pairs;
+      // The latest deposit less the camera's OPL up to that point of the segment.
+      const double late = beam.opl + std::max(hit.oplBegin - double(seg.eta) * hit.tRayBegin,
+                                              hit.oplEnd - double(seg.eta) * hit.tRayEnd);
+      if (late >= minOpl) {
+        ++kept;
+        EXPECT_TRUE(std::binary_search(gated.begin(), gated.end(), b))
+            << "beam " << b << " (latest " << late << ") dropped at minOpl " << minOpl << ", query " << i;
+      }
+      // At a threshold just below the pair's latest deposit: the bound is tight there.
+      map.queryUnsorted(seg, edge, marks, BeamMap::Cull::Boxes, late - 1e-6 * (std::abs(late) + 1.0));
+      EXPECT_TRUE(std::find(edge.begin(), edge.end(), b) != edge.end())
+          << "beam " << b << " dropped just below its latest deposit " << late << ", query " << i;
+    }
+  }
+  ASSERT_GT(kept, 200u);
+  ASSERT_GT(pairs, kept + 200u);  // some pairs lie wholly before the threshold
+  EXPECT_LT(double(gatedCount), 0.7 * double(allCount)) << "the bound prunes";
+}
+
 }  // namespace
 }  // namespace femto::beams

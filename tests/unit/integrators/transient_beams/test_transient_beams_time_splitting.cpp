@@ -5,7 +5,10 @@
 // fog cube lit from inside (thin and thick, observer time on and off) they
 // agree in every bin within their combined noise, with no bias allowance;
 // the split one is less noisy in the late bins, which is what it is for; and
-// its bits do not depend on the thread count.
+// its bits do not depend on the thread count. time_gating: a late window's
+// render skips (but for before_window_rate of them, weighted) the estimates
+// that land wholly before it; gated and ungated agree in every bin and in
+// the steady image, which holds the light before the window.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,14 +27,15 @@ struct Cube {
   bool observerTime;
 };
 
-std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting) {
+std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting, bool gating = true, int firstBin = 0) {
   return loadSceneStrict(str(R"(<scene version="3.0.0">
   <integrator type="transient_beams"><integer name="passes" value="3"/>
     <integer name="photon_count" value="1500"/><integer name="max_depth" value="40"/>
     <float name="radius" value="0.04"/><float name="surface_radius" value="0.1"/>
     <float name="surface_time_width" value="0.25"/>
     <boolean name="observer_time" value=")", c.observerTime ? "true" : "false", R"("/>
-    <boolean name="time_splitting" value=")", splitting ? "true" : "false", R"("/></integrator>
+    <boolean name="time_splitting" value=")", splitting ? "true" : "false", R"("/>
+    <boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>
   <medium id="fog" type="homogeneous"><float name="sigma_t" value=")", c.sigmaT, R"("/>
     <float name="albedo" value=")", c.albedo, R"("/></medium>
   <shape type="cube"><ref name="interior" id="fog"/></shape>
@@ -45,7 +49,7 @@ std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting) {
     <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
     <film type="transient"><integer name="width" value="12"/><integer name="height" value="12"/>
       <integer name="temporal_bins" value="24"/><float name="start_opl" value=")",
-                             c.observerTime ? 3.0 : 0.0, R"("/><float name="bin_width_opl" value="0.25"/><rfilter type="box"/></film>
+                             (c.observerTime ? 3.0 : 0.0) + 0.25 * firstBin, R"("/><float name="bin_width_opl" value="0.25"/><rfilter type="box"/></film>
   </sensor>
 </scene>)"));
 }
@@ -82,4 +86,20 @@ TEST(TransientBeamsTimeSplitting, BitsDoNotDependOnTheThreadCount) {
   size_t differing = 0;
   for (size_t i = 0; i < one.volume.size(); ++i) differing += one.volume[i] != two.volume[i];
   EXPECT_EQ(differing, 0u);
+}
+
+TEST(TransientBeamsTimeGating, ALateWindowAgreesWithoutGatingPerBinAndInTheSteadyImage) {
+  // The window starts 12 bins in: half the light arrives before it.
+  const int runs = 10;
+  for (const Cube& c : {Cubes[0], Cubes[2]}) {
+    SCOPED_TRACE(str("sigma_t ", c.sigmaT, " albedo ", c.albedo, " observer time ", c.observerTime));
+    std::vector<Mean> gated = imageSums(cubeScene(c, true, true, 12), "beams_time_gating_on", runs, 100);
+    std::vector<Mean> plain = imageSums(cubeScene(c, true, false, 12), "beams_time_gating_off", runs, 500);
+    ASSERT_GT(plain.back().mean(), 1.5 * [&] {
+      double window = 0.0;
+      for (size_t b = 0; b + 1 < plain.size(); ++b) window += plain[b].mean();
+      return window;
+    }()) << "the steady image holds light from before the window: its weight is tested";
+    expectAgree(gated, plain, "time_gating");
+  }
 }
