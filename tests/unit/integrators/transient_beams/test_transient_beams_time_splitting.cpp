@@ -15,6 +15,7 @@
 
 #include <femto/render/scene.h>
 
+#include "fog_cube_scene.h"
 #include "transient_agreement_util.h"
 
 using namespace femto;
@@ -22,47 +23,17 @@ using namespace femto::test;
 
 namespace {
 
-struct Cube {
-  float sigmaT, albedo;
-  bool observerTime;
-};
+using Cube = FogCube;
+const auto& Cubes = FogCubes;
 
 std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting, bool gating = true, int firstBin = 0) {
-  return loadSceneStrict(str(R"(<scene version="3.0.0">
-  <integrator type="transient_beams"><integer name="passes" value="3"/>
+  return loadSceneStrict(fogCubeScene(c, str(R"(<integrator type="transient_beams"><integer name="passes" value="3"/>
     <integer name="photon_count" value="1500"/><integer name="max_depth" value="40"/>
     <float name="radius" value="0.04"/><float name="surface_radius" value="0.1"/>
     <float name="surface_time_width" value="0.25"/>
-    <boolean name="observer_time" value=")", c.observerTime ? "true" : "false", R"("/>
     <boolean name="time_splitting" value=")", splitting ? "true" : "false", R"("/>
-    <boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>
-  <medium id="fog" type="homogeneous"><float name="sigma_t" value=")", c.sigmaT, R"("/>
-    <float name="albedo" value=")", c.albedo, R"("/></medium>
-  <shape type="cube"><ref name="interior" id="fog"/></shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="0.95"/><rotate x="1" angle="-90"/><translate y="-0.95"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf>
-  </shape>
-  <emitter type="point"><point name="position" x="0.2" y="0.3" z="-0.1"/><float name="intensity" value="3"/></emitter>
-  <sensor type="perspective"><float name="fov" value="35"/>
-    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
-    <film type="transient"><integer name="width" value="12"/><integer name="height" value="12"/>
-      <integer name="temporal_bins" value="24"/><float name="start_opl" value=")",
-                             (c.observerTime ? 3.0 : 0.0) + 0.25 * firstBin, R"("/><float name="bin_width_opl" value="0.25"/><rfilter type="box"/></film>
-  </sensor>
-</scene>)"));
+    <boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>)"), 2, firstBin));
 }
-
-/// The late half of the bins' summed squared relative standard error.
-double lateNoise(const std::vector<Mean>& sums) {
-  double n = 0.0;
-  for (size_t b = (sums.size() - 1) / 2; b + 1 < sums.size(); ++b)
-    n += std::pow(sums[b].standardError() / std::max(sums[b].mean(), 1e-12), 2.0);
-  return n;
-}
-
-const Cube Cubes[] = {{0.5f, 0.8f, true}, {3.0f, 0.95f, true}, {3.0f, 0.95f, false}};
 
 }  // namespace
 
