@@ -272,7 +272,11 @@ CameraTracer::WindowGate CameraTracer::windowGate(const Scene& scene, RadianceRe
 void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const SurfaceInteraction& si,
                                         Sampler& sampler, RadianceRecorder& recorder) {
   const float r = maps_.surfaceRadius;
-  maps_.photons.query(si.p, r, scratch_);
+  // Time gating: this gather skips (the map does) the photons whose light
+  // lands wholly before the window, or weighs them (WindowGate).
+  const WindowGate gate = windowGate(scene, recorder, sampler);
+  maps_.photons.query(si.p, r, scratch_,
+                      gate.dropBefore ? gate.windowStart - gate.late - maps_.surfaceTimeWidth - s.opl : -Infinity);
   ++stats_.surfaceQueries;
   stats_.surfacePhotons += scratch_.size();
   if (scratch_.empty()) return;
@@ -284,7 +288,6 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
   // it holds no photons), counted once a photon contributes.
   double norm = 0.0;
   const double horizon = recorder.horizon();
-  const WindowGate gate = windowGate(scene, recorder, sampler);
   for (uint32_t index : scratch_) {
     const SurfacePhoton& photon = maps_.photons.photons()[index];
     if (dot(photon.n, side) <= 0.0f || !settings_.depthAllowed(s.segments + photon.depth)) continue;

@@ -99,11 +99,17 @@ void SurfacePhotonMap::build(float cellSize) {
   order_.resize(photons_.size());
   sortedP_.resize(photons_.size());
   sortedKey_.resize(photons_.size());
+  sortedOpl_.resize(photons_.size());
   for (size_t i = 0; i < photons_.size(); ++i) {
     uint32_t at = fill[mixBits(key[i]) & (buckets - 1)]++;
     order_[at] = uint32_t(i);
     sortedP_[at] = photons_[i].p;
     sortedKey_[at] = key[i];
+    const double opl = photons_[i].opl;
+    float up = float(opl);
+    if (double(up) < opl) up = std::nextafter(up, std::numeric_limits<float>::infinity());
+    sortedOpl_[at] = up;
+    maxLegEta_ = std::max(maxLegEta_, photons_[i].legEta);
   }
 }
 
@@ -113,9 +119,13 @@ uint64_t SurfacePhotonMap::cellKey(const Point3f& p) const {
   return packCell(c[0], c[1], c[2]);
 }
 
-void SurfacePhotonMap::query(const Point3f& p, float radius, std::vector<uint32_t>& out) const {
+void SurfacePhotonMap::query(const Point3f& p, float radius, std::vector<uint32_t>& out, double minOpl) const {
   out.clear();
   if (photons_.empty() || !(radius >= 0.0f) || !isFinite(p)) return;
+  // Time gating: a photon's light reaches p no later than opl + legEta radius.
+  const double earliest = minOpl - double(maxLegEta_) * double(radius) * (1.0 + 1e-6);
+  float floor = std::isnan(earliest) ? -std::numeric_limits<float>::infinity() : float(earliest);
+  if (double(floor) > earliest) floor = std::nextafter(floor, -std::numeric_limits<float>::infinity());
   float r2 = radius * radius;
   // The cell range of the query box, widened by a hair so rounding in
   // p +- radius cannot drop a cell holding a photon at distance exactly
@@ -134,7 +144,7 @@ void SurfacePhotonMap::query(const Point3f& p, float radius, std::vector<uint32_
   // A radius far above the cell size: scanning every photon is cheaper.
   if (cells > double(photons_.size())) {
     for (size_t i = 0; i < sortedP_.size(); ++i)
-      if (squaredLength(sortedP_[i] - p) <= r2) out.push_back(order_[i]);
+      if (sortedOpl_[i] >= floor && squaredLength(sortedP_[i] - p) <= r2) out.push_back(order_[i]);
     return;
   }
   uint64_t mask = bucketStart_.size() - 2;
@@ -144,14 +154,15 @@ void SurfacePhotonMap::query(const Point3f& p, float radius, std::vector<uint32_
         uint64_t key = packCell(x, y, z);
         uint64_t b = mixBits(key) & mask;
         for (uint32_t i = bucketStart_[b]; i < bucketStart_[b + 1]; ++i)
-          if (sortedKey_[i] == key && squaredLength(sortedP_[i] - p) <= r2) out.push_back(order_[i]);
+          if (sortedKey_[i] == key && sortedOpl_[i] >= floor && squaredLength(sortedP_[i] - p) <= r2)
+            out.push_back(order_[i]);
       }
 }
 
 size_t SurfacePhotonMap::memoryBytes() const {
   return sizeof(*this) + photons_.capacity() * sizeof(SurfacePhoton) + bucketStart_.capacity() * sizeof(uint32_t) +
          order_.capacity() * sizeof(uint32_t) + sortedP_.capacity() * sizeof(Point3f) +
-         sortedKey_.capacity() * sizeof(uint64_t);
+         sortedKey_.capacity() * sizeof(uint64_t) + sortedOpl_.capacity() * sizeof(float);
 }
 
 }  // namespace femto::beams

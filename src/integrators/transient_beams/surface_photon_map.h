@@ -12,6 +12,7 @@
 // cells its sphere overlaps; it is cheapest when the cell size is about the
 // query radius, so pass the radius you will query with when you know it.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <femto/math/spectrum.h>
@@ -63,7 +64,13 @@ class SurfacePhotonMap {
   /// squaredLength(x - p) <= radius * radius; each once, in an order fixed by
   /// the map and `p`; `out` is cleared first). Any radius works; radii
   /// much larger than the cell size cost more cells per query.
-  void query(const Point3f& p, float radius, std::vector<uint32_t>& out) const;
+  ///
+  /// Time gating: with `minOpl` finite, photons whose light cannot reach p
+  /// at or after minOpl are skipped: opl + legEta radius < minOpl
+  /// (lastLegDelay is at most legEta |x - p|). Every photon that can is
+  /// still reported.
+  void query(const Point3f& p, float radius, std::vector<uint32_t>& out,
+             double minOpl = -std::numeric_limits<double>::infinity()) const;
 
   const std::vector<SurfacePhoton>& photons() const { return photons_; }
   size_t size() const { return photons_.size(); }
@@ -82,6 +89,8 @@ class SurfacePhotonMap {
   std::vector<uint32_t> bucketStart_, order_;
   std::vector<Point3f> sortedP_;
   std::vector<uint64_t> sortedKey_;
+  std::vector<float> sortedOpl_;  // the photons' OPL, rounded up (time gating)
+  float maxLegEta_ = 0.0f;         // the largest legEta
   Point3f gridMin_;
   float cellSize_ = 0.0f;
   int gridRes_[3] = {0, 0, 0};  // cells along each axis covering the photons

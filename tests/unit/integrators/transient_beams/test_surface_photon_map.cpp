@@ -176,4 +176,44 @@ TEST(SurfacePhotonMap, LastLegDelayIsTheOplThroughTheLegsStart) {
   EXPECT_EQ(lastLegDelay(photon, photon.p + Vec3f(0.1f)), 0.0);
 }
 
+// Time gating (query's minOpl): the photons a gated query drops are exactly
+// none of those whose light can reach the query point at or after minOpl
+// (photon.opl + lastLegDelay at the point, legs finite, infinite and
+// unknown), also at a threshold just below each such photon's arrival; and
+// it does drop photons that arrive earlier.
+TEST(SurfacePhotonMap, TimeGatedQueryKeepsEveryPhotonThatArrivesInTime) {
+  PCG32 rng(9, 4);
+  std::vector<SurfacePhoton> photons = wallPhotons(rng, 6000);
+  for (size_t i = 0; i < photons.size(); ++i) {
+    SurfacePhoton& ph = photons[i];
+    ph.opl = 10.0 * rng.nextDouble();
+    ph.wi = Vec3f(0.0f, 0.0f, 1.0f);
+    ph.legEta = i % 4 == 0 ? 0.0f : 1.0f + 0.5f * rng.nextFloat();
+    ph.leg = i % 7 == 0 ? Infinity : 0.01f + rng.nextFloat();
+  }
+  const float radius = 0.05f;
+  SurfacePhotonMap map(photons, radius);
+  std::vector<uint32_t> all, gated, edge;
+  size_t dropped = 0, inTime = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Point3f p = map.photons()[rng.nextUInt(uint32_t(map.size()))].p;
+    const double minOpl = 10.0 * rng.nextDouble();
+    map.query(p, radius, all);
+    map.query(p, radius, gated, minOpl);
+    std::sort(gated.begin(), gated.end());
+    dropped += all.size() - gated.size();
+    for (uint32_t k : all) {
+      const double arrival = map.photons()[k].opl + lastLegDelay(map.photons()[k], p);
+      if (arrival >= minOpl) {
+        ++inTime;
+        EXPECT_TRUE(std::binary_search(gated.begin(), gated.end(), k)) << "photon " << k << " arriving " << arrival;
+      }
+      map.query(p, radius, edge, arrival - 1e-6 * (std::abs(arrival) + 1.0));
+      EXPECT_TRUE(std::find(edge.begin(), edge.end(), k) != edge.end()) << "photon " << k << " at its own arrival";
+    }
+  }
+  ASSERT_GT(inTime, 500u);
+  EXPECT_GT(dropped, 500u) << "the gate drops photons that arrive too early";
+}
+
 }  // namespace femto::beams
