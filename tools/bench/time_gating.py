@@ -136,8 +136,8 @@ def main(argv):
         shutil.rmtree(tmp, ignore_errors=True)
     provenance.header("Time-gated windows: one window alone against the whole range's bins",
                       "tools/bench/time_gating.py", "tools/bench/time_gating.py " + " ".join(argv),
-                      notes=[f"defaults of each integrator (transient_path gates by the film's window; transient_beams "
-                             f"does not yet); CPU the median of {args.repeats} runs, relMSE the mean (and median) over "
+                      notes=[f"defaults of each integrator (both gate by the film's window, time_gating); "
+                             f"CPU the median of {args.repeats} runs, relMSE the mean (and median) over "
                              "them, corrected by the reference's own share",
                              "reference: mean of 4 transient_path renders of the whole range "
                              f"(seeds {', '.join(map(str, REF_SEEDS))})"])
