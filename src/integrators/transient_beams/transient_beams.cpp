@@ -72,6 +72,7 @@
 
 #include <femto/base/thread_edges.h>
 #include <femto/core/log.h>
+#include <femto/core/resources.h>
 #include <femto/core/plugin.h>
 #include <femto/film/transient_film.h>
 #include <femto/film/transient_render.h>
@@ -173,6 +174,7 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     RenderStats stats = renderTransientPasses(scene, options, settings.passes, [&](int pass, double horizon) {
       collect();
       const uint64_t seed = mixSeed(passSeed(options.seed, pass), PhotonSeedSalt);
+      if (pass == 0) requirePassMemory(scene, settings, seed, horizon);
       auto trace = [&] {
         beams::PhotonPass traced = beams::tracePhotonPass(scene, settings, seed, horizon);
         if (pass == 0 && !(settings.radius > 0.0f)) {
@@ -239,6 +241,42 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     stats.seconds += totals.traceSeconds + totals.buildSeconds;
     logInfo(totals.summary(stats.seconds));
     return stats;
+  }
+
+  /// Resources before any work: the first photons of pass 0 (at most
+  /// 4096, traced again in the pass) give the beams and surface photons per
+  /// photon; a pass's maps (held while its camera samples render, the
+  /// photons' blocks copied once into them, the map's sorted copies and BVH
+  /// pieces on top) must fit in the available memory. time_splitting's
+  /// passes hold more (BeamMap at most 16x the split photons'): the estimate
+  /// is pass 0's, announced in the log with the photon counts.
+  void requirePassMemory(const Scene& scene, const beams::BeamSettings& settings, uint64_t seed,
+                         double horizon) const {
+    const uint64_t total = uint64_t(settings.photonCount);
+    const uint64_t sample = std::min<uint64_t>(total, 4096);
+    if (sample == 0) return;
+    beams::PhotonTracer tracer(scene, settings, horizon);
+    std::vector<beams::Beam> beamList;
+    std::vector<beams::SurfacePhoton> photons;
+    uint64_t beamPhotons = 0;
+    for (uint64_t i = 0; i < sample; ++i) {
+      const bool store = i < uint64_t(settings.beamPhotons());
+      beamPhotons += store;
+      tracer.trace(seed, i, beamList, photons, store);
+    }
+    const double perPhoton = double(photons.size()) / double(sample);
+    const double perBeamPhoton = beamPhotons > 0 ? double(beamList.size()) / double(beamPhotons) : 0.0;
+    const double surfaceBytes = double(total) * perPhoton * (2.0 * sizeof(beams::SurfacePhoton) + 36.0);
+    const double beamBytes = double(settings.beamPhotons()) * perBeamPhoton * (2.0 * sizeof(beams::Beam) + 16.0 * 64.0);
+    const std::string what =
+        str("transient_beams: one pass's photon maps (", total, " photons, ", settings.beamPhotons(), " leaving beams)");
+    try {
+      requireMemory(surfaceBytes + beamBytes, what, "lower photon_count (or beam_photon_count) and raise passes");
+    } catch (const Error& e) {
+      throw Error(settings.location, e.what());  // the <integrator> element's file and line
+    }
+    logInfo(what, ": about ", formatBytes(surfaceBytes + beamBytes), " (estimated from the first ", sample,
+            " photons)");
   }
 
   /// time_splitting: the film's time profile from a pilot of pass 0's camera

@@ -320,6 +320,25 @@ TEST(TransientBeamsRender, BadParametersNameTheFileAndLine) {
               "\"gather_roulette\" of \"transient_beams\": must be in [0, 1]");
 }
 
+TEST(TransientBeamsRender, PhotonMapsThatCannotFitAreRefusedBeforeTracing) {
+  // 4e9 photons a pass: about a terabyte of maps. Refused at once, naming
+  // the integrator's file and line and the size, instead of hours of
+  // tracing ending in std::bad_alloc.
+  auto scene = loadSceneStrict(foggyRoom(R"(<integer name="photon_count" value="4000000000"/>)"));
+  RenderOptions options;
+  options.output = scratchDir("beams-too-many") / "out.exr";
+  options.progress = false;
+  try {
+    scene->integrator().render(*scene, options);
+    ADD_FAILURE() << "no error for 4e9 photons a pass";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("<media test>:"), std::string::npos) << message;
+    EXPECT_NE(message.find("one pass's photon maps (4000000000 photons"), std::string::npos) << message;
+    EXPECT_NE(message.find("of memory"), std::string::npos) << message;
+  }
+}
+
 TEST(TransientBeamsRender, ShippedFogCornellBoxRendersWithTransientBeams) {
   auto dir = scratchDir("beams-fog-shipped");
   loadSceneStrict("<scene version=\"3.0.0\"/>");
