@@ -236,13 +236,24 @@ void CameraTracer::nextEvent(const Scene& scene, const Path& s, const SurfaceInt
   if (!(ds.pdf > 0.0f) || emitterWeight.isBlack()) return;
   // The light segment's OPL is at least its length (eta >= 1).
   if (std::isfinite(ds.dist) && s.opl + ds.dist >= recorder.horizon()) return;
+  // Time gating: light that lands wholly before the window (its OPL is at
+  // most the largest index times the straight distance) is made for
+  // before_window_rate of the connections, weighted by its inverse.
+  double weight = 1.0;
+  if (std::isfinite(ds.dist)) {
+    const WindowGate gate = windowGate(scene, recorder, sampler);
+    if (gate.before(s.opl + double(scene.largestMediumEta()) * double(ds.dist))) {
+      if (gate.dropBefore) return;
+      weight = gate.beforeWeight;
+    }
+  }
   // The camera path never samples the BSDF at this vertex (photons cover
   // indirect light), so emitter sampling is the only strategy: weight 1.
   Color3f f = si.bsdf()->eval(si, si.toLocal(ds.d));
   if (f.isBlack()) return;
   Connection c = connect(scene, si, ds.d, ds.p, ds.dist, mediumAfter(si, ds.d, s.medium), s.surfaceEta, sampler);
   if (c.transmittance.isBlack()) return;
-  recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance,
+  recorder.addPulsed(s.opl + c.opl, s.opl + c.opl, s.throughput * f * emitterWeight * c.transmittance * float(weight),
                      ds.emitter->pulse());
 }
 
