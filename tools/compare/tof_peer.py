@@ -26,7 +26,6 @@ that floor, the ratio says more about the reference than about femto.
 """
 import argparse
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -34,19 +33,12 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import media_suite  # noqa: E402  (the port's scene copy, render(), relmse())
 import reference_floor  # noqa: E402  (femto's noise and the reference's floor)
+from mitransient_peer import README_CALIBRATION, calibration  # noqa: E402  (the shared CPU calibration)
 from provenance import header, load_line  # noqa: E402
 
 # ToF-Tungsten's beams as its README reports them (2026-12-03, against
 # reference-independent.npy): passes -> (CPU s, relMSE), at calibration 0.345.
 PEER = {4: (7.6, 29.5), 16: (25.9, 7.11), 64: (94.5, 3.81)}
-README_CALIBRATION = 0.345
-CALIBRATION = os.path.join(os.path.dirname(media_suite.ROOT.rstrip("/")), "shared", "tools", "cpu_calibration.py")
-
-
-def calibration(runs):
-    """`runs` readings of ../shared/tools/cpu_calibration.py (CPU s of its fixed workload)."""
-    return [float(subprocess.run([sys.executable, CALIBRATION], stdout=subprocess.PIPE, text=True,
-                                 check=True).stdout.strip()) for _ in range(runs)]
 
 
 def main(argv):

@@ -266,8 +266,11 @@ CameraTracer::WindowGate CameraTracer::windowGate(const Scene& scene, RadianceRe
       !(settings_.beforeWindowRate < 1.0f))
     return gate;
   // The horizon is the window's end plus the time filter's reach.
-  double latest = 0.0;
-  for (const auto& emitter : scene.emitters()) latest = std::max(latest, emitter->pulse().latest());
+  if (std::isnan(latestPulse_)) {  // once per camera sample, not per gather
+    latestPulse_ = 0.0;
+    for (const auto& emitter : scene.emitters()) latestPulse_ = std::max(latestPulse_, emitter->pulse().latest());
+  }
+  const double latest = latestPulse_;
   if (!std::isfinite(latest)) return gate;  // a continuous pulse: everything reaches the window
   gate.active = true;
   gate.windowStart = grid.start;

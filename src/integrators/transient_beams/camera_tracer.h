@@ -39,6 +39,7 @@
 // scattered or bounced specularly at least once. Depth (camera + photon
 // segments) is checked per contribution against max_depth.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <femto/math/ray.h>
@@ -151,6 +152,7 @@ class CameraTracer {
   std::vector<uint32_t>& scratch_;
   BeamMap::VisitMarks& marks_;
   CameraStatistics& stats_;
+  mutable double latestPulse_ = std::numeric_limits<double>::quiet_NaN();  // windowGate: the latest pulse's end
 };
 
 }  // namespace femto::beams

@@ -287,15 +287,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
                                                const RenderOptions& options) const {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
     if (!settings_.timeSplitting || !film) return nullptr;
-    const TimeGrid& window = film->timeGrid();
-    const TimeGrid axis = TimeLevels::pilotAxis(window, TimeLevels::PilotBins);
-    const TimeDeposit deposit(axis, TimeFilter::box());
-    const TransientRenderContext context{scene, first, deposit, film->nearClipOrigin() && settings_.observerTime};
-    const int samples = TimeLevels::pilotSamples(double(film->cropSize().x) * double(film->cropSize().y) *
-                                                 double(scene.sensor().sampler().sampleCount()));
-    auto levels = std::make_shared<TimeLevels>(TimeLevels::fromProfile(
-        pilotTimeProfile(context, mixSeed(options.seed, PilotSeedSalt), samples, options.threads), axis,
-        window.start));
+    auto levels = std::make_shared<TimeLevels>(
+        pilotTimeLevels(scene, *film, first, mixSeed(options.seed, PilotSeedSalt), options.threads));
     if (levels->level.empty()) return nullptr;
     return levels;
   }

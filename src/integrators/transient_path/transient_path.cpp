@@ -178,15 +178,8 @@ class TransientPathIntegrator : public TransientIntegrator {
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
     if (!timeSplitting_ || !film || depth_.maxDepth == 0) return TransientIntegrator::render(scene, options);
-    const TimeGrid& window = film->timeGrid();
-    const TimeGrid axis = TimeLevels::pilotAxis(window, TimeLevels::PilotBins);
-    const TimeDeposit deposit(axis, TimeFilter::box());
-    TransientRenderContext context{scene, *this, deposit, film->nearClipOrigin() && observerTime_};
-    const int samples = TimeLevels::pilotSamples(double(film->cropSize().x) * double(film->cropSize().y) *
-                                                 double(scene.sensor().sampler().sampleCount()));
     auto configured = std::make_shared<TransientPathIntegrator>(*this);
-    configured->levels_ = TimeLevels::fromProfile(
-        pilotTimeProfile(context, options.seed ^ PilotSeedSalt, samples, options.threads), axis, window.start);
+    configured->levels_ = pilotTimeLevels(scene, *film, *this, options.seed ^ PilotSeedSalt, options.threads);
     std::shared_ptr<const TransientIntegrator> integrator = configured;
     return renderTransientPasses(scene, options, 1, [&](int, double) { return integrator; });
   }

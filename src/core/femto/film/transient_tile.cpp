@@ -8,6 +8,7 @@
 
 #include <femto/base/error.h>
 #include <femto/base/thread_edges.h>
+#include <femto/film/transient_film.h>
 #include <femto/render/emitter.h>
 #include <femto/render/film.h>
 #include <femto/render/image_block.h>
@@ -179,6 +180,18 @@ std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint
   for (const std::vector<double>& chunk : chunkSums)
     for (int b = 0; b < bins; ++b) profile[size_t(b)] += chunk[size_t(b)];
   return profile;
+}
+
+TimeLevels pilotTimeLevels(const Scene& scene, const TransientFilm& film, const TransientIntegrator& integrator,
+                           uint64_t seed, int threads) {
+  const TimeGrid& window = film.timeGrid();
+  const TimeGrid axis = TimeLevels::pilotAxis(window, TimeLevels::PilotBins);
+  const TimeDeposit deposit(axis, TimeFilter::box());
+  const TransientRenderContext context{scene, integrator, deposit,
+                                       film.nearClipOrigin() && integrator.countsCameraSegment()};
+  const int samples = TimeLevels::pilotSamples(double(film.cropSize().x) * double(film.cropSize().y) *
+                                               double(scene.sensor().sampler().sampleCount()));
+  return TimeLevels::fromProfile(pilotTimeProfile(context, seed, samples, threads), axis, window.start);
 }
 
 TransientTile::TransientTile(const Point2i& offset, const Point2i& size, const TransientRenderContext& context)

@@ -8,13 +8,15 @@
 #include <vector>
 
 #include <femto/loop/render_loop.h>
-#include <femto/time/time_deposit.h>
 #include <femto/render/transient_integrator.h>
+#include <femto/time/time_deposit.h>
+#include <femto/time/time_levels.h>
 
 namespace femto {
 
 class Scene;
 class Sensor;
+class TransientFilm;
 
 /// The recorder horizon for a scene: the deposit's horizon minus the
 /// earliest offset of any emitter's pulse (a gaussian pulse can make light
@@ -103,6 +105,14 @@ double largestNearClipOrigin(const Scene& scene);
 /// same on any thread count).
 std::vector<double> pilotTimeProfile(const TransientRenderContext& context, uint64_t seed, int samples,
                                      int threads = 0);
+
+/// time_splitting's levels (time/time_levels.h) for a render of `film` by
+/// `integrator`: pilotTimeProfile on TimeLevels::pilotAxis of the film's
+/// window, with TimeLevels::pilotSamples of one pass's camera samples, the
+/// film's time origin where the integrator counts the camera segment. Empty
+/// when the profile holds no light.
+TimeLevels pilotTimeLevels(const Scene& scene, const TransientFilm& film, const TransientIntegrator& integrator,
+                           uint64_t seed, int threads);
 
 class TransientTile final : public TileAccumulator {
  public:
