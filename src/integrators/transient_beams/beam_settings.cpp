@@ -1,5 +1,6 @@
 #include <transient_beams/beam_settings.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -47,6 +48,10 @@ BeamSettings BeamSettings::parse(const Properties& props) {
                                         "an OPL width; 0: surface photons deposit at their instant");
   s.gatherFraction = props.getFloat("gather_fraction", s.gatherFraction, Range::leftOpen(0, 1),
                                     "the probability that a camera segment gathers beams");
+  // 0, as when absent: derived (withSurfaceGatherFor).
+  const float surfaceGather = props.getFloat("surface_gather_fraction", 0.0f, Range::closed(0, 1),
+                                             "the probability that a camera sample gathers surface photons; 0: derived");
+  s.surfaceGatherFraction = surfaceGather > 0.0f ? surfaceGather : -1.0f;
   s.gatherRoulette = props.getFloat("gather_roulette", s.gatherRoulette, Range::closed(0, 1),
                                     "the camera transmittance at which a gather's Russian roulette starts; 0: never");
   s.alpha = props.getFloat("alpha", s.alpha, Range::leftOpen(0, 1));
@@ -201,6 +206,14 @@ BeamSettings BeamSettings::withSurfaceTimeWidthFor(const TimeGrid& grid) const {
     const double w = std::min(TimeBinFraction * grid.binWidth, 2.0 * double(s.surfaceRadius));
     s.surfaceTimeWidth = grid.bins > 0 && w >= grid.binWidth ? float(w) : 0.0f;
   }
+  return s;
+}
+
+BeamSettings BeamSettings::withSurfaceGatherFor(uint32_t spp) const {
+  BeamSettings s = *this;
+  if (s.surfaceGatherFraction < 0.0f)
+    s.surfaceGatherFraction =
+        float(std::clamp(SurfaceGathersPerPixel / double(std::max<uint32_t>(spp, 1)), MinSurfaceGatherFraction, 1.0));
   return s;
 }
 

@@ -44,6 +44,11 @@ struct DerivedRadius {
   double density = 0.0, time = 0.0, boundary = 0.0, light = Infinity, radius = 0.0;
 };
 
+/// Surface gathers per pixel and pass the derived surface gather fraction aims at.
+inline constexpr double SurfaceGathersPerPixel = 2.0;
+/// The derived surface gather fraction's floor.
+inline constexpr double MinSurfaceGatherFraction = 0.125;
+
 /// max_depth (the longest camera + photon path in segments, -1: no limit),
 /// rr_depth (photon segments before Russian roulette may end a photon) and
 /// depthAllowed() come from PathDepthSettings, read with path's rule.
@@ -61,6 +66,9 @@ struct BeamSettings : PathDepthSettings {
   /// Negative (absent): derived, withSurfaceTimeWidthFor(); 0: at the instant t.
   float surfaceTimeWidth = -1.0f;
   float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
+  /// Probability that a camera sample's surface vertex gathers surface
+  /// photons (weight 1/it). Negative (absent): derived, withSurfaceGatherFor().
+  float surfaceGatherFraction = -1.0f;
   float gatherRoulette = BeamRoulette::GatherTau;  // T_cam where a gather's Russian roulette starts (0: never)
   float alpha = 0.9f;  // progressive radius reduction, in (0, 1] (docs/design/photon-beams.md: why 0.9)
   BeamStore store = BeamStore::All;
@@ -151,6 +159,13 @@ struct BeamSettings : PathDepthSettings {
   /// kernel within one bin lowers no bin's variance, and only shifts
   /// light later) and for steady films (no time axis). Unchanged when given.
   BeamSettings withSurfaceTimeWidthFor(const TimeGrid& grid) const;
+  /// The surface gather fraction, unless given, for `spp` camera samples
+  /// per pixel and pass: SurfaceGathersPerPixel gathers a pixel (within
+  /// [MinSurfaceGatherFraction, 1]). A pass's photons are shared by all of
+  /// a pixel's samples, so beyond a few gathers more of them lower only the
+  /// part of the noise from where in the pixel they land, at the cost of a
+  /// photon query each (docs/design/photon-beams.md, "Surface gathers").
+  BeamSettings withSurfaceGatherFor(uint32_t spp) const;
 
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)

@@ -30,6 +30,9 @@ constexpr int MaxSpecularBounces = 64;
 constexpr float MinPhotonCosine = 1e-4f;
 /// Chords a ray x beam pair's deposit is cut into at most (PairOpl::pieces).
 constexpr int MaxPairPieces = 32;
+/// Salts of the camera sample's strata (Sampler::stratum) that decide its
+/// beam gathers and its surface photon gathers.
+constexpr uint64_t BeamGatherSalt = 0x6265616d73ull, SurfaceGatherSalt = 0x73757266ull;
 
 }  // namespace
 
@@ -135,10 +138,11 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
                                RadianceRecorder& recorder) {
   // Russian roulette on the whole gather (docs/design/photon-beams.md, "Gather
   // fraction"): a segment gathers with probability q and its estimates weigh
-  // 1/q, so the expectation is unchanged. Only drawn when q < 1, so q = 1
-  // renders exactly as without it.
+  // 1/q, so the expectation is unchanged. The sample's stratum decides, so
+  // q of a pixel's samples gather, not a binomial number; q = 1 renders
+  // exactly as without it.
   const float q = settings_.gatherFraction;
-  if (q < 1.0f && !(sampler.next1D() < q)) return;
+  if (q < 1.0f && !(sampler.stratum(BeamGatherSalt) < q)) return;
   const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
   const Medium& medium = *s.medium;
   // Russian roulette along the segment (beam_roulette.h, "Along a camera
@@ -285,6 +289,12 @@ CameraTracer::WindowGate CameraTracer::windowGate(const Scene& scene, RadianceRe
 
 void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const SurfaceInteraction& si,
                                         Sampler& sampler, RadianceRecorder& recorder) {
+  // Russian roulette on the gather, decided by the sample's stratum as for
+  // beams: surface_gather_fraction of a pixel's samples gather, weighted by
+  // its inverse (absent: every sample).
+  const float q = settings_.surfaceGatherFraction;
+  if (q > 0.0f && q < 1.0f && !(sampler.stratum(SurfaceGatherSalt) < q)) return;
+  const double gatherWeight = q > 0.0f && q < 1.0f ? 1.0 / double(q) : 1.0;
   const float r = maps_.surfaceRadius;
   // Time gating: this gather skips (the map does) the photons whose light
   // lands wholly before the window, or weighs them (WindowGate).
@@ -318,8 +328,8 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
     Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
     if (f.isBlack()) continue;
     if (norm == 0.0)
-      norm = 1.0 / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
-                    std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
+      norm = gatherWeight / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
+                             std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
     // Spread over the causal time kernel [opl, opl + w] (beam_settings.h).
     recorder.addPulsed(opl, opl + maps_.surfaceTimeWidth,
                        s.throughput * f * photon.power * float(norm * (before ? gate.beforeWeight : 1.0)),

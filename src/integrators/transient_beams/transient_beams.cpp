@@ -25,7 +25,12 @@
 // | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all; absent: | -      |
 // |                |         |                | more when the derived radius is below the density radius  |        |
 // | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
-// |                |         |                | estimates weighted by 1/it (Russian roulette)             |        |
+// |                |         |                | estimates weighted by 1/it (Russian roulette; the sample's|        |
+// |                |         |                | stratum decides: that share of a pixel's samples gather)  |        |
+// | surface_gather_fraction | float | derived | probability that a camera sample gathers surface      | -      |
+// |                |         |                | photons, weighted by 1/it (the sample's stratum decides); |        |
+// |                |         |                | 0 or absent: 2 / (spp per pass) within [1/8, 1], two      |        |
+// |                |         |                | gathers a pixel per pass                                  |        |
 // | gather_roulette | float  | 0.05           | camera transmittance at which a segment's gather starts   | -      |
 // |                |         |                | an unbiased Russian roulette along it (homogeneous media; |        |
 // |                |         |                | beam_roulette.h); 0: gathers reach the segment's end      |        |
@@ -162,7 +167,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
   RenderStats render(const Scene& scene, const RenderOptions& options) const override {
     // The beam radius, unless given, is derived from pass 0's beams and then
     // shrinks per pass like a given one (beam_settings.h).
-    beams::BeamSettings settings = settings_.resolved(scene.bbox());
+    beams::BeamSettings settings =
+        settings_.resolved(scene.bbox()).withSurfaceGatherFor(scene.sensor().sampler().sampleCount());
     PassTotals totals;
     // The pass just rendered: its counters are read before the next pass is
     // built (and its maps freed then, so memory stays that of one pass).

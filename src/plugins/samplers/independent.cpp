@@ -23,11 +23,15 @@ class IndependentSampler final : public Sampler {
 
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
   void startPixel(uint64_t seed, uint64_t pixelIndex) override {
+    markPixel(seed, pixelIndex);
     pixelSeed_ = mixSeed(seed, pixelIndex);
     sampleIndex_ = 0;
     rng_.seed(mixSeed(pixelSeed_, sampleIndex_));
   }
-  void advance() override { rng_.seed(mixSeed(pixelSeed_, ++sampleIndex_)); }
+  void advance() override {
+    markSample();
+    rng_.seed(mixSeed(pixelSeed_, ++sampleIndex_));
+  }
   float next1D() override { return rng_.nextFloat(); }
   Point2f next2D() override {
     float x = rng_.nextFloat();

@@ -16,7 +16,7 @@ namespace femto {
 
 /// Bump whenever a class a plugin derives from or calls changes layout or
 /// virtual table. A plugin built against another value is refused.
-inline constexpr uint32_t FemtoAbiVersion = 8;
+inline constexpr uint32_t FemtoAbiVersion = 9;
 
 struct PluginDescriptor {
   uint32_t abiVersion;     // FemtoAbiVersion at the plugin's build time

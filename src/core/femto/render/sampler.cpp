@@ -1,5 +1,7 @@
 #include <femto/render/sampler.h>
 
+#include <algorithm>
+
 namespace femto {
 
 Sampler::Sampler(const Properties& props) {
@@ -20,6 +22,13 @@ uint64_t splitmix(uint64_t z) {
 }  // namespace
 
 uint64_t mixSeed(uint64_t a, uint64_t b) { return splitmix(splitmix(a) ^ b); }
+
+float Sampler::stratum(uint64_t salt) const {
+  const double shift = double(mixSeed(stratumKey_, salt) >> 11) * 0x1p-53;
+  const double v = shift + double(stratumIndex_ % sampleCount_) / double(sampleCount_);
+  // Below 1 in float too (v < 1 in double may round up to 1.0f).
+  return std::min(float(v < 1.0 ? v : v - 1.0), 0x1.fffffep-1f);
+}
 
 uint64_t Sampler::cameraSeed(uint64_t renderSeed) const {
   return sceneSeed_ == 0 ? renderSeed : mixSeed(renderSeed, sceneSeed_);

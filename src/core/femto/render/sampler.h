@@ -11,6 +11,9 @@
 
 namespace femto {
 
+/// Hash two 64-bit values into a well-mixed seed (splitmix64 finaliser).
+uint64_t mixSeed(uint64_t a, uint64_t b);
+
 class Sampler : public Object {
  public:
   /// Reads "sample_count" (default 4).
@@ -25,6 +28,16 @@ class Sampler : public Object {
   virtual float next1D() = 0;
   virtual Point2f next2D() = 0;
 
+  /// A uniform value in [0, 1) for a choice made once per sample (whether
+  /// it gathers photons, say): the pixel's sample index over sampleCount(),
+  /// shifted by a random offset of the pixel and `salt`. Each value is
+  /// uniform on its own, and over a pixel's sampleCount() samples exactly
+  /// one lies in each [k/n, (k+1)/n), so "stratum < q" picks q n of them
+  /// (give or take one) instead of a binomial number. Samplers that do not
+  /// mark their pixels and samples (markPixel, markSample) give all of a
+  /// pixel's samples one value: still uniform, not stratified.
+  float stratum(uint64_t salt) const;
+
   uint32_t sampleCount() const { return sampleCount_; }
   void setSampleCount(uint32_t n) { sampleCount_ = n; }
   /// The seed the camera samples start from for a render seeded `renderSeed`
@@ -32,12 +45,19 @@ class Sampler : public Object {
   /// (Mitsuba 3) when it gives a non-zero one.
   uint64_t cameraSeed(uint64_t renderSeed) const;
 
+ protected:
+  /// For stratum(): subclasses call these from startPixel() and advance().
+  void markPixel(uint64_t seed, uint64_t pixelIndex) {
+    stratumKey_ = mixSeed(seed, pixelIndex);
+    stratumIndex_ = 0;
+  }
+  void markSample() { ++stratumIndex_; }
+
  private:
+  uint64_t stratumKey_ = 0;
+  uint32_t stratumIndex_ = 0;
   uint32_t sampleCount_ = 4;
   uint64_t sceneSeed_ = 0;
 };
-
-/// Hash two 64-bit values into a well-mixed seed (splitmix64 finaliser).
-uint64_t mixSeed(uint64_t a, uint64_t b);
 
 }  // namespace femto

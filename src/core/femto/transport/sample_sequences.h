@@ -100,11 +100,13 @@ class DimensionalSampler : public Sampler {
  public:
   using Sampler::Sampler;
   void startPixel(uint64_t seed, uint64_t pixelIndex) override {
+    markPixel(seed, pixelIndex);
     pixelKey_ = mixSeed(seed, pixelIndex);
     sampleIndex_ = 0;
     dimension_ = 0;
   }
   void advance() override {
+    markSample();
     ++sampleIndex_;
     dimension_ = 0;
   }

@@ -110,6 +110,18 @@ TEST(TransientBeamsRender, GatherFractionKeepsTheExpectation) {
   expectAgree(imageSums(a, "beams-fog-q", 6), imageSums(b, "beams-fog-q1", 6), "gather fraction 0.25 vs 1");
 }
 
+TEST(TransientBeamsRender, SurfaceGatherFractionKeepsTheExpectation) {
+  // Russian roulette on the surface photon gathers (surface_gather_fraction
+  // 0.25: two of a pixel's 8 samples gather, weighted by 4) estimates the
+  // same volume as gathering at every sample (1): the same photons and radii,
+  // so no bias allowance. Without the 1/q weight the walls' indirect light
+  // would come out 4 times too dim.
+  const std::map<std::string, std::string> some = {{"photon_count", "4000"}, {"surface_gather_fraction", "0.25"}},
+                                           all = {{"photon_count", "4000"}, {"surface_gather_fraction", "1"}};
+  auto a = fogBox("transient_beams", 4, 8, some), b = fogBox("transient_beams", 4, 8, all);
+  expectAgree(imageSums(a, "beams-fog-qs", 6), imageSums(b, "beams-fog-qs1", 6), "surface gather fraction 0.25 vs 1");
+}
+
 TEST(TransientBeamsRender, VolumeTimeIntegralIsTheSteadyImage) {
   auto dir = scratchDir("beams-fog-integral");
   // A window wide enough for nearly everything: [0, 40).

@@ -205,3 +205,42 @@ TEST(Samplers, LowerIntegrationErrorThanIndependentOnASmoothIntegrand) {
     EXPECT_LT(error, 0.5 * independent) << name << ": MSE " << error << " vs independent " << independent;
   }
 }
+
+TEST(Samplers, StrataHoldOneSampleOfAPixelEachAndAreUniformOverPixels) {
+  // Sampler::stratum: over a pixel's n samples exactly one value in each
+  // [k/n, (k+1)/n), whatever numbers the samples drew; each sample's value
+  // uniform over pixels (chi-square of sample 3's value, 10 cells); another
+  // salt shifts the strata independently; the same (seed, pixel) repeats.
+  const int pixels = 4000, cells = 10;
+  const double alpha = sidakSignificance(0.01, 6);
+  for (const char* name : {"independent", "stratified", "ldsampler"}) {
+    for (int64_t n : {1, 4, 8}) {
+      auto sampler = makeSampler(name, n)->clone();
+      const uint32_t count = sampler->sampleCount();  // stratified rounds up to a square
+      std::vector<double> observed(cells, 0.0);
+      double sameStratum = 0.0;
+      for (int p = 0; p < pixels; ++p) {
+        sampler->startPixel(5, uint64_t(p));
+        std::vector<int> perStratum(count, 0);
+        for (uint32_t s = 0; s < count; ++s) {
+          for (uint32_t k = 0; k <= s % 3; ++k) sampler->next1D();  // draws do not move the strata
+          const float v = sampler->stratum(1), w = sampler->stratum(2);
+          ASSERT_TRUE(v >= 0.0f && v < 1.0f && w >= 0.0f && w < 1.0f) << name << " " << v << " " << w;
+          ++perStratum[std::min(uint32_t(v * float(count)), count - 1)];
+          if (s == std::min<uint32_t>(3, count - 1)) observed[size_t(v * cells)] += 1;
+          if (s == 0) sameStratum += int(v * 4) == int(w * 4);
+          sampler->advance();
+        }
+        for (int c : perStratum) ASSERT_EQ(c, 1) << name << ", " << count << " samples, pixel " << p;
+      }
+      ChiSquareResult r = chiSquareTest(observed, std::vector<double>(cells, double(pixels) / cells));
+      EXPECT_GT(r.pValue, alpha) << name << ", " << count << " samples: " << r.message;
+      // Salts 1 and 2 land in the same quarter for a quarter of the pixels (independent shifts).
+      EXPECT_NEAR(sameStratum / pixels, 0.25, 5 * std::sqrt(0.25 * 0.75 / pixels)) << name;
+      sampler->startPixel(5, 17);
+      const float first = sampler->stratum(1);
+      sampler->startPixel(5, 17);
+      EXPECT_EQ(sampler->stratum(1), first) << name;
+    }
+  }
+}
