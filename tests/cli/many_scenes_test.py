@@ -109,15 +109,21 @@ check(r.stdout.count("rendered ") == 5, f"another seed renders all again:\n{r.st
 slow = OPTS + ["-D", "spp=2048"]
 through = os.path.join(work, "through")
 femto_render(scenes + ["-o", through, "--resume"] + slow)
-killed = os.path.join(work, "killed")
-p = subprocess.Popen([femto, "render"] + scenes + ["-o", killed, "--resume"] + slow,
-                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-deadline = time.monotonic() + 120
-while time.monotonic() < deadline and not os.path.exists(os.path.join(killed, "plane1.femto-done")):
-    time.sleep(0.01)
-p.send_signal(signal.SIGKILL)
-p.wait()
-done = [s for s in range(5) if os.path.exists(os.path.join(killed, f"plane{s}.femto-done"))]
+# Under load the poll below may wake only after every scene is done: such
+# an attempt stopped nothing part way, and another is made (at most 4).
+for attempt in range(4):
+    killed = os.path.join(work, f"killed{attempt}")
+    p = subprocess.Popen([femto, "render"] + scenes + ["-o", killed, "--resume"] + slow,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not os.path.exists(os.path.join(killed, "plane1.femto-done")):
+        time.sleep(0.01)
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    done = [s for s in range(5) if os.path.exists(os.path.join(killed, f"plane{s}.femto-done"))]
+    if 2 <= len(done) < 5:
+        break
+    print(f"attempt {attempt}: killed after scenes {done}, not part way; again")
 check(2 <= len(done) < 5, f"killed after scenes {done}: the test needs a job stopped part way")
 r = femto_render(scenes + ["-o", killed, "--resume"] + slow)
 check(r.stdout.count("skipped ") == len(done), f"the {len(done)} finished scenes skipped:\n{r.stdout}")
