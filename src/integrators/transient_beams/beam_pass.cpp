@@ -29,7 +29,7 @@ BeamMapOptions mapOptions(const std::vector<Beam>& beams, float radius, const Sc
     for (const ProbeSegment& p : probeSegments(*scene, horizon, settings.observerTime)) segments.push_back(p.segment);
     const Film& film = scene->sensor().film();
     const double samples = double(film.cropSize().x) * double(film.cropSize().y) *
-                           double(scene->sensor().sampler().sampleCount()) * double(settings.gatherFraction);
+                           double(scene->sensor().sampler().sampleCount()) * double(settings.gathers());
     options.crossingDensity = BeamMap::crossingDensity(beams, radius, segments, samples / (ProbeGrid * ProbeGrid));
   }
   return options;

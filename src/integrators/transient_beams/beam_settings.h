@@ -49,6 +49,37 @@ inline constexpr double SurfaceGathersPerPixel = 2.0;
 /// The derived surface gather fraction's floor.
 inline constexpr double MinSurfaceGatherFraction = 0.125;
 
+/// The beam gather fraction's rule (issue 33: a cost-aware gather). A gather
+/// (one camera segment's beam query) costs G and the rest of a camera
+/// sample S, the photon pass and the maps' build shared over the pass's
+/// samples included; made with probability q it adds roulette variance
+/// about (1/q - 1) times what the sample already has, so relMSE x CPU,
+/// (S + q G)(1/q), is least at q = sqrt(S / G). The costs are counts (from
+/// pass 0's pilot, the same on every rank and thread count) weighed by
+/// fixed per-operation times measured on the fog box and ToF-Tungsten's
+/// port (docs/design/photon-beams.md, "A cost-aware gather fraction").
+struct GatherCosts {
+  double gathersPerSample = 0.0;         // camera segments in media per camera sample
+  double boxes = 0.0, candidates = 0.0;  // per gather: map piece boxes crossed, beams tested
+  double pairs = 0.0;                    // per gather: pairs that deposit
+  double surfaceQueries = 0.0, surfacePhotons = 0.0;  // per camera sample
+  double photonsPerSample = 0.0, piecesPerSample = 0.0, storedPerSample = 0.0;  // the pass's, shared
+  double samplesPerPixel = 1.0;  // camera samples per pixel and pass
+  /// sqrt(S / (RouletteVarianceShare G)) within [max(MinGatherFraction,
+  /// 1 / samplesPerPixel), 1]: at least one gather a pixel per pass (the
+  /// strata make it exact; with fewer, a pixel's pass holds no beams); 1
+  /// without gathers.
+  double fraction() const;
+};
+/// The derived beam gather fraction's floor.
+inline constexpr double MinGatherFraction = 1.0 / 16.0;
+/// How much more of a sample's variance a skipped gather would have added
+/// than the roulette does: a pass's gathers in one pixel meet the same
+/// beams, so skipping some loses less than an independent estimate. Fitted:
+/// sqrt(S / G) read 2.7-5x the best q measured on the fog box (256 and 1024
+/// bins) and the thick medium (docs/design/photon-beams.md).
+inline constexpr double RouletteVarianceShare = 8.0;
+
 /// max_depth (the longest camera + photon path in segments, -1: no limit),
 /// rr_depth (photon segments before Russian roulette may end a photon) and
 /// depthAllowed() come from PathDepthSettings, read with path's rule.
@@ -65,7 +96,10 @@ struct BeamSettings : PathDepthSettings {
   /// [t, t + w] (docs/design/photon-beams.md, "The surface time kernel").
   /// Negative (absent): derived, withSurfaceTimeWidthFor(); 0: at the instant t.
   float surfaceTimeWidth = -1.0f;
-  float gatherFraction = 1.0f;        // probability that a camera segment in a medium gathers beams (weight 1/it)
+  /// Probability that a camera segment in a medium gathers beams (weight
+  /// 1/it). Negative (absent): 1 in pass 0, then derived from pass 0's
+  /// pilot (GatherCosts::fraction); gathers() reads it.
+  float gatherFraction = -1.0f;
   /// Probability that a camera sample's surface vertex gathers surface
   /// photons (weight 1/it). Negative (absent): derived, withSurfaceGatherFor().
   float surfaceGatherFraction = -1.0f;
@@ -166,6 +200,8 @@ struct BeamSettings : PathDepthSettings {
   /// part of the noise from where in the pixel they land, at the cost of a
   /// photon query each (docs/design/photon-beams.md, "Surface gathers").
   BeamSettings withSurfaceGatherFor(uint32_t spp) const;
+  /// The beam gather fraction in use: gatherFraction, 1 while it is still to be derived.
+  float gathers() const { return gatherFraction > 0.0f ? gatherFraction : 1.0f; }
 
   /// Kernel radii of pass `pass` (0-based). The beam estimate uses a 1D
   /// kernel, whose variance grows as 1/r: r_{i+1} = r_i (i + alpha) / (i + 1)

@@ -141,7 +141,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
   // 1/q, so the expectation is unchanged. The sample's stratum decides, so
   // q of a pixel's samples gather, not a binomial number; q = 1 renders
   // exactly as without it.
-  const float q = settings_.gatherFraction;
+  const float q = settings_.gathers();
   if (q < 1.0f && !(sampler.stratum(BeamGatherSalt) < q)) return;
   const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
   const Medium& medium = *s.medium;

@@ -24,9 +24,11 @@
 // |                |         |                | beam photons are traced when no surface stores photons)   |        |
 // | beam_photon_count | integer | 10000       | how many of them (the first) leave beams; 0: all; absent: | -      |
 // |                |         |                | more when the derived radius is below the density radius  |        |
-// | gather_fraction | float  | 1              | probability that a camera segment gathers beams, its      | -      |
+// | gather_fraction | float  | derived        | probability that a camera segment gathers beams, its      | -      |
 // |                |         |                | estimates weighted by 1/it (Russian roulette; the sample's|        |
-// |                |         |                | stratum decides: that share of a pixel's samples gather)  |        |
+// |                |         |                | stratum decides: that share of a pixel's samples gather); |        |
+// |                |         |                | 0 or absent: 1 in pass 0, then from pass 0's pilot's      |        |
+// |                |         |                | costs (beam_settings.h, GatherCosts)                      |        |
 // | surface_gather_fraction | float | derived | probability that a camera sample gathers surface      | -      |
 // |                |         |                | photons, weighted by 1/it (the sample's stratum decides); |        |
 // |                |         |                | 0 or absent: 2 / (spp per pass) within [1/8, 1], two      |        |
@@ -229,7 +231,15 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
           logInfo("transient_beams: surface time width ", settings.surfaceTimeWidth, " (OPL)");
         }
         previous = std::make_shared<const beams::BeamPass>(settings, pass, std::move(traced), &scene, horizon);
-        if (pass == 0 && settings.passes > 1) settings.timeLevels = timeLevels(scene, *previous, options);
+        if (pass == 0 && settings.passes > 1) {
+          settings.timeLevels = timeLevels(scene, *previous, options);
+          // The beam gather fraction, unless given, from the pilot's work
+          // (beam_settings.h, GatherCosts): pass 0 gathers at every segment.
+          if (settings.timeLevels && settings.gatherFraction < 0.0f) {
+            settings.gatherFraction = float(gatherCosts(scene, *previous).fraction());
+            logInfo("transient_beams: gather fraction ", settings.gatherFraction, " from pass 1 on");
+          }
+        }
       };
       // Photons are traced with the thread count the user asked for.
       if (options.threads > 0) {
@@ -289,6 +299,30 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
   /// samples (pilotTimeProfile; a quarter of a pass's, 256 to 4096), as
   /// transient_path reads its own; the photons of passes 1 on are rouletted
   /// and split against it (photon_tracer.h). Null without a transient film.
+  /// What a gather and the rest of a camera sample cost, read off the first
+  /// pass's pilot (its camera statistics before the pass renders: the same
+  /// on every rank) and its photons and maps.
+  static beams::GatherCosts gatherCosts(const Scene& scene, const beams::BeamPass& first) {
+    const beams::CameraStatistics c = first.cameraStatistics();
+    beams::GatherCosts g;
+    if (c.cameraRays == 0) return g;
+    const double rays = double(c.cameraRays), gathers = double(std::max<uint64_t>(c.segments, 1));
+    const Film& film = scene.sensor().film();
+    const double samples = double(film.cropSize().x) * double(film.cropSize().y) *
+                           double(std::max<uint32_t>(scene.sensor().sampler().sampleCount(), 1));
+    g.gathersPerSample = double(c.segments) / rays;
+    g.boxes = double(c.piecesCrossed) / gathers;
+    g.candidates = double(c.candidates) / gathers;
+    g.pairs = double(c.pairHits) / gathers;
+    g.surfaceQueries = double(c.surfaceQueries) / rays;
+    g.surfacePhotons = double(c.surfacePhotons) / rays;
+    g.photonsPerSample = double(first.tracedPhotons()) / samples;
+    g.piecesPerSample = double(first.beamMap().pieceCount()) / samples;
+    g.storedPerSample = double(first.photonMap().size()) / samples;
+    g.samplesPerPixel = double(std::max<uint32_t>(scene.sensor().sampler().sampleCount(), 1));
+    return g;
+  }
+
   std::shared_ptr<const TimeLevels> timeLevels(const Scene& scene, const beams::BeamPass& first,
                                                const RenderOptions& options) const {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
