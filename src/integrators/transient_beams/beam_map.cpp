@@ -37,6 +37,7 @@
 #include <femto/base/thread_edges.h>
 #include <femto/math/bbox.h>
 #include <transient_beams/boundary_extension.h>
+#include <transient_beams/float_bounds.h>
 #include <transient_beams/ray_beam.h>
 
 namespace femto::beams {
@@ -290,10 +291,7 @@ float pieceOplBound(const Beam& beam, float end, float radius) {
   const double od = std::sqrt(double(dot(beam.offsetDelay, beam.offsetDelay)));
   const double reach = std::max(double(end), double(beam.before) * radius) + double(radius);
   const double bound = beam.opl + (double(beam.eta) + od) * reach;
-  const double padded = bound + 1e-5 * (std::abs(bound) + 1.0);
-  float f = float(padded);
-  if (double(f) < padded) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
+  return floatAtLeast(bound + 1e-5 * (std::abs(bound) + 1.0));
 }
 
 /// Fill Node4::oplMax bottom-up from node `at`; returns the node's largest.
@@ -622,10 +620,7 @@ size_t BeamMap::queryUnsorted(const CameraSegment& segment, std::vector<uint32_t
   uint32_t* mark = marks.mark.data();
   size_t crossed = 0;
   // Rounded down to a float: never prunes a piece the double would keep.
-  float floor = float(minOpl);
-  if (double(floor) > minOpl) floor = std::nextafter(floor, -std::numeric_limits<float>::infinity());
-  if (std::isnan(minOpl)) floor = -std::numeric_limits<float>::infinity();
-  traverse(segment, floor, [&](const Piece& piece) {
+  traverse(segment, floatAtMost(minOpl), [&](const Piece& piece) {
     ++crossed;
     if (mark[piece.beam] == stamp) return;
     mark[piece.beam] = stamp;

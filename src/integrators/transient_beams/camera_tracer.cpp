@@ -34,6 +34,15 @@ constexpr int MaxPairPieces = 32;
 /// beam gathers and its surface photon gathers.
 constexpr uint64_t BeamGatherSalt = 0x6265616d73ull, SurfaceGatherSalt = 0x73757266ull;
 
+/// Russian roulette on a whole gather made with probability q (absent, <= 0,
+/// or 1: always): the weight of its estimates, 1/q, or 0 when it is skipped.
+/// The sample's stratum decides, so q of a pixel's samples gather, not a
+/// binomial number; q = 1 draws nothing.
+double gatherWeight(Sampler& sampler, uint64_t salt, float q) {
+  if (!(q > 0.0f && q < 1.0f)) return 1.0;
+  return sampler.stratum(salt) < q ? 1.0 / double(q) : 0.0;
+}
+
 }  // namespace
 
 /// The mutable state of one camera path: where it is and its OPL there
@@ -137,13 +146,9 @@ bool CameraTracer::followSpecular(Path& s, const SurfaceInteraction& si, Sampler
 void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sampler& sampler,
                                RadianceRecorder& recorder) {
   // Russian roulette on the whole gather (docs/design/photon-beams.md, "Gather
-  // fraction"): a segment gathers with probability q and its estimates weigh
-  // 1/q, so the expectation is unchanged. The sample's stratum decides, so
-  // q of a pixel's samples gather, not a binomial number; q = 1 renders
-  // exactly as without it.
-  const float q = settings_.gathers();
-  if (q < 1.0f && !(sampler.stratum(BeamGatherSalt) < q)) return;
-  const double gatherWeight = q < 1.0f ? 1.0 / double(q) : 1.0;
+  // fraction"): the expectation is unchanged.
+  const double gathered = gatherWeight(sampler, BeamGatherSalt, settings_.gathers());
+  if (gathered == 0.0) return;
   const Medium& medium = *s.medium;
   // Russian roulette along the segment (beam_roulette.h, "Along a camera
   // segment"): past where T_cam falls to gather_roulette the query reaches a
@@ -196,7 +201,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, Sa
     float fp = phase.eval(-s.ray.d, -beam.direction);
     if (!(fp > 0.0f)) continue;
     Color3f value = s.throughput * medium.scatteringCoefficient(x) * fp * beam.power *
-                    float(double(hit.kernel) * invPhotons * gatherWeight * (before ? gate.beforeWeight : 1.0));
+                    float(double(hit.kernel) * invPhotons * gathered * (before ? gate.beforeWeight : 1.0));
     if (value.isBlack()) continue;
     value *= medium.transmittance(segment.ray, hit.tRay, sampler) * roulette.inverseSurvival(hit.tRay);
     if (!points) {
@@ -289,12 +294,9 @@ CameraTracer::WindowGate CameraTracer::windowGate(const Scene& scene, RadianceRe
 
 void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const SurfaceInteraction& si,
                                         Sampler& sampler, RadianceRecorder& recorder) {
-  // Russian roulette on the gather, decided by the sample's stratum as for
-  // beams: surface_gather_fraction of a pixel's samples gather, weighted by
-  // its inverse (absent: every sample).
-  const float q = settings_.surfaceGatherFraction;
-  if (q > 0.0f && q < 1.0f && !(sampler.stratum(SurfaceGatherSalt) < q)) return;
-  const double gatherWeight = q > 0.0f && q < 1.0f ? 1.0 / double(q) : 1.0;
+  // Russian roulette on the gather, as for beams (surface_gather_fraction).
+  const double gathered = gatherWeight(sampler, SurfaceGatherSalt, settings_.surfaceGatherFraction);
+  if (gathered == 0.0) return;
   const float r = maps_.surfaceRadius;
   // Time gating: this gather skips (the map does) the photons whose light
   // lands wholly before the window, or weighs them (WindowGate).
@@ -328,7 +330,7 @@ void CameraTracer::gatherSurfacePhotons(const Scene& scene, const Path& s, const
     Color3f f = bsdf.eval(si, local, TransportMode::Radiance) / cosine;
     if (f.isBlack()) continue;
     if (norm == 0.0)
-      norm = gatherWeight / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
+      norm = gathered / (double(Pi) * double(r) * double(r) * double(maps_.photonCount) *
                              std::max(coveredShare(scene, si.p, Vec3f(side), double(r)), MinCoveredShare));
     // Spread over the causal time kernel [opl, opl + w] (beam_settings.h).
     recorder.addPulsed(opl, opl + maps_.surfaceTimeWidth,

@@ -8,6 +8,7 @@
 
 #include <femto/base/error.h>
 #include <femto/math/bbox.h>
+#include <transient_beams/float_bounds.h>
 
 namespace femto::beams {
 
@@ -105,10 +106,7 @@ void SurfacePhotonMap::build(float cellSize) {
     order_[at] = uint32_t(i);
     sortedP_[at] = photons_[i].p;
     sortedKey_[at] = key[i];
-    const double opl = photons_[i].opl;
-    float up = float(opl);
-    if (double(up) < opl) up = std::nextafter(up, std::numeric_limits<float>::infinity());
-    sortedOpl_[at] = up;
+    sortedOpl_[at] = floatAtLeast(photons_[i].opl);
     maxLegEta_ = std::max(maxLegEta_, photons_[i].legEta);
   }
 }
@@ -123,9 +121,7 @@ void SurfacePhotonMap::query(const Point3f& p, float radius, std::vector<uint32_
   out.clear();
   if (photons_.empty() || !(radius >= 0.0f) || !isFinite(p)) return;
   // Time gating: a photon's light reaches p no later than opl + legEta radius.
-  const double earliest = minOpl - double(maxLegEta_) * double(radius) * (1.0 + 1e-6);
-  float floor = std::isnan(earliest) ? -std::numeric_limits<float>::infinity() : float(earliest);
-  if (double(floor) > earliest) floor = std::nextafter(floor, -std::numeric_limits<float>::infinity());
+  const float floor = floatAtMost(minOpl - double(maxLegEta_) * double(radius) * (1.0 + 1e-6));
   float r2 = radius * radius;
   // The cell range of the query box, widened by a hair so rounding in
   // p +- radius cannot drop a cell holding a photon at distance exactly

@@ -295,10 +295,6 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
             " photons)");
   }
 
-  /// time_splitting: the film's time profile from a pilot of pass 0's camera
-  /// samples (pilotTimeProfile; a quarter of a pass's, 256 to 4096), as
-  /// transient_path reads its own; the photons of passes 1 on are rouletted
-  /// and split against it (photon_tracer.h). Null without a transient film.
   /// What a gather and the rest of a camera sample cost, read off the first
   /// pass's pilot (its camera statistics before the pass renders: the same
   /// on every rank) and its photons and maps.
@@ -308,8 +304,8 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     if (c.cameraRays == 0) return g;
     const double rays = double(c.cameraRays), gathers = double(std::max<uint64_t>(c.segments, 1));
     const Film& film = scene.sensor().film();
-    const double samples = double(film.cropSize().x) * double(film.cropSize().y) *
-                           double(std::max<uint32_t>(scene.sensor().sampler().sampleCount(), 1));
+    const double spp = double(std::max<uint32_t>(scene.sensor().sampler().sampleCount(), 1));
+    const double samples = double(film.cropSize().x) * double(film.cropSize().y) * spp;
     g.gathersPerSample = double(c.segments) / rays;
     g.boxes = double(c.piecesCrossed) / gathers;
     g.candidates = double(c.candidates) / gathers;
@@ -319,10 +315,14 @@ class TransientBeamsIntegrator final : public TransientIntegrator {
     g.photonsPerSample = double(first.tracedPhotons()) / samples;
     g.piecesPerSample = double(first.beamMap().pieceCount()) / samples;
     g.storedPerSample = double(first.photonMap().size()) / samples;
-    g.samplesPerPixel = double(std::max<uint32_t>(scene.sensor().sampler().sampleCount(), 1));
+    g.samplesPerPixel = spp;
     return g;
   }
 
+  /// time_splitting: the film's time profile from a pilot of pass 0's camera
+  /// samples (pilotTimeProfile; a quarter of a pass's, 256 to 4096), as
+  /// transient_path reads its own; the photons of passes 1 on are rouletted
+  /// and split against it (photon_tracer.h). Null without a transient film.
   std::shared_ptr<const TimeLevels> timeLevels(const Scene& scene, const beams::BeamPass& first,
                                                const RenderOptions& options) const {
     const auto* film = dynamic_cast<const TransientFilm*>(&scene.sensor().film());
