@@ -3,6 +3,8 @@
 # every rank and thread count: every file of the render (image, previews,
 # volume, sidecar, frames) is compared byte for byte with a plain render.
 #   render_equal.sh FEMTO SCENE OUT_DIR "RANKSxTHREADS ..." [render options...]
+# With STORED=own (or rank0) in the environment, the log must also say that
+# each rank stored its own tiles (or that it did not: rank 0 stored them).
 set -u
 femto=$1 scene=$2 out=$3 runs=${4//;/ }  # "2x1 3x2" or a CMake list "2x1;3x2"
 shift 4
@@ -38,6 +40,12 @@ for run in $runs; do
     cmp -s "$out/one/$f" "$dir/$f" || { echo "n=$ranks t=$threads: $f differs from one process"; status=1; }
   done
   [ "$(grep -c '^rendered ' "$dir.log")" -eq 1 ] || { echo "n=$ranks: expected one summary line"; cat "$dir.log"; status=1; }
+  if [ "$ranks" -gt 1 ] && [ -n "${STORED:-}" ]; then
+    own=$(grep -c "tiles rendered by ranks.*each rank stored its own tiles" "$dir.log")
+    all=$(grep -c "tiles rendered by ranks" "$dir.log")
+    { [ "$STORED" = own ] && [ "$own" -eq "$all" ]; } || { [ "$STORED" = rank0 ] && [ "$own" -eq 0 ]; } ||
+      { echo "n=$ranks t=$threads: expected tiles stored by $STORED ($own of $all streams stored by their ranks)"; status=1; }
+  fi
   if [ "$ranks" -gt 1 ]; then
     grep -E "tiles rendered by ranks" "$dir.log" | grep -qE ":( [0-9]+)* 0( |;|$)" &&
       { echo "n=$ranks t=$threads: a rank rendered no tiles:"; grep "tiles rendered" "$dir.log"; status=1; }

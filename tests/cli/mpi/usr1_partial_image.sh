@@ -22,4 +22,11 @@ cat "$out/job.log"
 [ "$code" -eq 130 ] || { echo "expected exit 130 (a partial image), got $code"; exit 1; }
 [ -s "$image" ] || { echo "no partial image at $image"; exit 1; }
 grep -q "^stopped early, partial image" "$out/job.log" || { echo "no partial-image summary"; exit 1; }
+# A transient film's volume too: complete in size (every rank's rows at their offsets) and readable.
+if [ -e "${image%.exr}.npy" ]; then
+  /usr/bin/python3 -c "import numpy, sys; v = numpy.load(sys.argv[1]); assert v.ndim == 4 and numpy.isfinite(v).all() and v.any()" \
+    "${image%.exr}.npy" || { echo "the partial volume does not read, or is empty"; exit 1; }
+  left=$(cd "$out" && ls -A | grep "^\.tmp-")
+  [ -z "$left" ] || { echo "temporaries left behind: $left"; exit 1; }
+fi
 echo "partial image written: $image"

@@ -4,8 +4,12 @@
 
 namespace femto::cli {
 
+int LocalTiles::threadsOf(const TileJob& job) {
+  return job.options.threads > 0 ? job.options.threads : tbb::this_task_arena::max_concurrency();
+}
+
 LocalTiles::LocalTiles(const TileJob& job) {
-  const int threads = job.options.threads > 0 ? job.options.threads : tbb::this_task_arena::max_concurrency();
+  const int threads = threadsOf(job);
   // The pipeline holds two tiles per thread; two more queued hide the time
   // an assignment takes to arrive from rank 0.
   wanted_ = size_t(2 * threads + 2);

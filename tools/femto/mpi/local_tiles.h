@@ -37,6 +37,8 @@ class LocalTiles {
   bool done() const;
   /// Sleeps until a tile finishes or `timeout` passes.
   void waitForFinished(std::chrono::microseconds timeout);
+  /// The threads `job` renders with in this process.
+  static int threadsOf(const TileJob& job);
   /// Tiles worth keeping assigned to keep every thread of this process busy.
   size_t wanted() const { return wanted_; }
 

@@ -1,6 +1,8 @@
 #include "mpi_tile_distribution.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -41,6 +43,18 @@ RenderStats MpiTileDistribution::run(TileJob& job) {
   // fits every rank's memory bound.
   int side = job.tileSide;
   check(MPI_Allreduce(MPI_IN_PLACE, &side, 1, MPI_INT, MPI_MIN, comm_), "reduce");
+  // Each rank keeps a few tiles queued (LocalTiles::wanted), so the last
+  // ones may wait on one rank while another has none: cut tiles small
+  // enough that every thread of the job gets many (at least 64 tiles a
+  // thread, or 8-pixel tiles). Only where each tile's pixels are stored
+  // alone: filters' borders are summed in tile order, which the side changes.
+  if (job.consumeWhereRendered) {
+    int threads = LocalTiles::threadsOf(job);
+    check(MPI_Allreduce(MPI_IN_PLACE, &threads, 1, MPI_INT, MPI_SUM, comm_), "reduce");
+    const Point2i crop = job.scene.sensor().film().cropSize();
+    const double balanced = std::sqrt(double(crop.x) * double(crop.y) / (64.0 * threads));
+    side = std::clamp(int(balanced), std::min(side, 8), side);
+  }
   if (side != job.tileSide) job.tiles = cropWindowTiles(job.scene, side), job.tileSide = side;
   if (rank_ == 0) return shareStats(coordinate(job));
   work(job);
@@ -143,8 +157,11 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
         if (header.index >= next || ready[header.index])
           throw Error(str("rank ", status.MPI_SOURCE, " sent tile ", header.index, ", which it was not given"));
         RenderTile& tile = tiles[header.index];
-        tile.accumulator = job.makeTile(tile.offset, tile.size);
-        tile.accumulator->unpack(buffer.data() + HeaderFloats, buffer.size() - HeaderFloats);
+        // Consumed where rendered: only the header comes.
+        if (!job.consumeWhereRendered) {
+          tile.accumulator = job.makeTile(tile.offset, tile.size);
+          tile.accumulator->unpack(buffer.data() + HeaderFloats, buffer.size() - HeaderFloats);
+        }
         tile.samples = header.samples, tile.invalid = header.invalid;
         bytesReceived += uint64_t(floats) * sizeof(float), ++tilesReceived;
         arrived(tile);
@@ -152,11 +169,15 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
         throw Error(str("rank ", status.MPI_SOURCE, " sent an unexpected message (tag ", status.MPI_TAG, ")"));
       }
     }
-    for (RenderTile* tile : local.takeFinished()) arrived(*tile), busy = true;
-    // Fold in tile order, as one process does: the sums are then the same bits.
+    for (RenderTile* tile : local.takeFinished()) {
+      if (job.consumeWhereRendered) job.consume(*tile->accumulator), tile->accumulator.reset();
+      arrived(*tile), busy = true;
+    }
+    // Fold in tile order, as one process does: the sums are then the same
+    // bits (tiles consumed where rendered are only counted here).
     while (consumed < next && ready[consumed]) {
       RenderTile& tile = tiles[consumed++];
-      job.consume(*tile.accumulator);
+      if (tile.accumulator) job.consume(*tile.accumulator);
       tile.accumulator.reset();
       stats.samples += tile.samples;
       stats.invalidSamples += tile.invalid;
@@ -172,7 +193,8 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   std::string counts;
   for (size_t n : perRank) counts += str(" ", n);
   logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
-           bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)");
+           bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)",
+           job.consumeWhereRendered ? "; each rank stored its own tiles" : "");
   return stats;
 }
 
@@ -202,7 +224,11 @@ void MpiTileDistribution::work(TileJob& job) {
     }
     for (RenderTile* tile : local.takeFinished()) {
       busy = true;
-      tile->accumulator->pack(buffer);
+      buffer.clear();
+      if (job.consumeWhereRendered)
+        job.consume(*tile->accumulator);
+      else
+        tile->accumulator->pack(buffer);
       TileHeader header{tile->index, tile->samples, tile->invalid};
       buffer.insert(buffer.begin(), HeaderFloats, 0.0f);
       std::memcpy(buffer.data(), &header, sizeof(header));

@@ -1,17 +1,21 @@
 #pragma once
 // Tiles shared between MPI ranks, dynamically: rank 0 hands out tile indices
-// in tile order to whichever rank asks (itself included), each rank renders
-// its tiles with its own threads and sends the raw sums back, and rank 0
-// folds every tile into the film in tile order, exactly as one process
-// would. Each pixel's sampler is seeded from (seed, pixel index), so where a
-// tile was rendered changes nothing: the output is bitwise that of one
-// process, whatever the rank and thread counts. Rank 0 is the only writer
-// (no MPI-IO: docs/BENCHMARKS.md measures why one writer is enough here).
+// in tile order to whichever rank asks (itself included) and each rank
+// renders its tiles with its own threads. Each pixel's sampler is seeded from
+// (seed, pixel index), so where a tile was rendered changes nothing: the
+// output is bitwise that of one process, whatever the rank and thread counts.
+// Where a pixel's stored value depends on its tile alone (transient films
+// without a filter border: TileJob::consumeWhereRendered), each rank stores
+// the tiles it rendered itself (positioned writes into rank 0's volume,
+// transient_output.h) and sends rank 0 only their sample counts; otherwise
+// it sends the raw sums and rank 0 folds every tile in tile order, as one
+// process would.
 //
 // Messages (MPI_COMM_WORLD, only the main thread of each rank calls MPI):
 //   worker -> 0  Request   one uint64: how many more tiles it wants
 //   0 -> worker  Assign    uint64 tile indices, in order; none: no more
-//   worker -> 0  TileData  a header (index, samples, invalid) then the packed sums
+//   worker -> 0  TileData  a header (index, samples, invalid), then the packed
+//                          sums unless the worker stored the tile itself
 // and at the end of each stream a broadcast of the job's statistics, so every
 // rank stops (a cancel) or goes on to the next pass together.
 #include <mpi.h>

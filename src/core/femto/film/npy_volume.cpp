@@ -79,8 +79,8 @@ NpyVolume NpyVolume::create(const std::filesystem::path& path, int height, int w
   return volume;
 }
 
-NpyVolume NpyVolume::open(const std::filesystem::path& path) {
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+NpyVolume NpyVolume::open(const std::filesystem::path& path, bool writable) {
+  int fd = ::open(path.c_str(), (writable ? O_RDWR : O_RDONLY) | O_CLOEXEC);
   if (fd < 0) systemError(path, "open");
   NpyVolume volume(path, fd, 0, 0, 0, 0);  // owns fd from here (closed on throw)
   char prefix[MagicSize + 4];

@@ -17,8 +17,9 @@ class NpyVolume {
   /// Create (truncate) `path` with a header for shape (height, width, bins, 3),
   /// sized to hold all data (unwritten parts read as zeros).
   static NpyVolume create(const std::filesystem::path& path, int height, int width, int bins);
-  /// Open an existing float32 (h, w, bins, 3) C-order volume for reading.
-  static NpyVolume open(const std::filesystem::path& path);
+  /// Open an existing float32 (h, w, bins, 3) C-order volume for reading
+  /// (and writing, when `writable`: a volume another process created).
+  static NpyVolume open(const std::filesystem::path& path, bool writable = false);
   NpyVolume(NpyVolume&& other) noexcept;
   NpyVolume& operator=(NpyVolume&&) = delete;
   ~NpyVolume();

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 #include <string>
 #include <system_error>
@@ -17,6 +18,7 @@
 #include <femto/core/resources.h>
 #include <femto/film/volume_info.h>
 #include <femto/film/volume_scan.h>
+#include <femto/loop/tile_distribution.h>
 
 namespace femto {
 namespace {
@@ -76,7 +78,9 @@ TransientOutput::TransientOutput(const TransientFilm& film, const std::filesyste
   // A filter wider than a pixel holds a band of tile rows until their
   // neighbours come (consumeBordered): up to 2 x reach + 2 rows of at most
   // 32-pixel tiles, with their borders.
-  if (const ReconstructionFilter* filter = film.filter(); filter && filter->radius() > 0.5f) {
+  const ReconstructionFilter* filter = film.filter();
+  const bool bordered = filter && filter->radius() > 0.5f;
+  if (bordered) {
     const int border = filterBorder(filter);
     const double rows = 4.0 * 32.0 + 4.0 * border, width = crop.x + 2.0 * border;
     requireMemory(rows * width * (3.0 * film.timeGrid().bins + 10.0) * sizeof(float),
@@ -84,9 +88,19 @@ TransientOutput::TransientOutput(const TransientFilm& film, const std::filesyste
                       film.timeGrid().bins, " bins)"),
                   "use <rfilter type=\"box\"/>, fewer time bins or a narrower image");
   }
-  if (path.empty()) return;
-  paths_ = film.outputPaths(path);
-  if (!film.writesVolume() && !film.writesFrames()) return;
+  TileDistribution* distribution = tileDistribution();
+  if (distribution && distribution->ranks() > 1 && !bordered) shared_ = distribution;
+  if (!path.empty()) {
+    paths_ = film.outputPaths(path);
+    if (film.writesVolume() || film.writesFrames()) createVolume();
+  }
+  if (shared_) shareVolume();
+}
+
+void TransientOutput::createVolume() {
+  const TransientFilm& film = film_;
+  const Point2i crop = film.cropSize();
+  const double pixels = double(crop.x) * double(crop.y);
   const int bins = film.timeGrid().bins;
   requireDisk(paths_->volume, pixels * double(bins) * 3.0 * sizeof(float),
               str("the transient volume of ", crop.x, "x", crop.y, " pixels x ", bins, " bins"),
@@ -99,6 +113,42 @@ TransientOutput::TransientOutput(const TransientFilm& film, const std::filesyste
   volumeTmp_ = dir / (".tmp-" + std::to_string(::getpid()) + "-" + paths_->volume.filename().string());
   volumeTmpGuard_.emplace(volumeTmp_);
   volume_.emplace(NpyVolume::create(volumeTmp_, crop.y, crop.x, film.timeGrid().bins));
+}
+
+void TransientOutput::shareVolume() {
+  // Rank 0 (the one given a path) names its temporary volume; the others
+  // open it to write their tiles' rows. It stays rank 0's to rename or remove.
+  const std::string mine = volume_ ? volumeTmp_.string() : std::string();
+  const std::vector<char> all = shared_->gatherAll(std::vector<char>(mine.begin(), mine.end()));
+  if (volume_ || all.empty()) return;
+  volume_.emplace(NpyVolume::open(std::filesystem::path(std::string(all.begin(), all.end())), /*writable=*/true));
+}
+
+void TransientOutput::shareStoredPixels() {
+  // Per rectangle: origin and size (4 ints), then its steady, before and
+  // after RGB, row by row. Every rank ends the pass with every pixel's value,
+  // the one its storing rank folded, whichever rank stores it next pass.
+  std::vector<char> mine;
+  auto put = [&](const void* data, size_t bytes) {
+    const char* p = static_cast<const char*>(data);
+    mine.insert(mine.end(), p, p + bytes);
+  };
+  for (const auto& [origin, size] : storedRects_) {
+    const int rect[4] = {origin.x, origin.y, size.x, size.y};
+    put(rect, sizeof rect);
+    for (const Bitmap* image : {&steady_, &before_, &after_})
+      for (int y = 0; y < size.y; ++y) put(image->pixel(origin.x, origin.y + y), size_t(size.x) * 3 * sizeof(float));
+  }
+  storedRects_.clear();
+  const std::vector<char> all = shared_->gatherAll(mine);
+  for (size_t at = 0; at < all.size();) {
+    int rect[4];
+    std::memcpy(rect, &all[at], sizeof rect);
+    at += sizeof rect;
+    const size_t rowBytes = size_t(rect[2]) * 3 * sizeof(float);
+    for (Bitmap* image : {&steady_, &before_, &after_})
+      for (int y = 0; y < rect[3]; ++y, at += rowBytes) std::memcpy(image->pixel(rect[0], rect[1] + y), &all[at], rowBytes);
+  }
 }
 
 TransientOutput::~TransientOutput() {
@@ -141,6 +191,7 @@ void TransientOutput::store(const Point2i& origin, const Point2i& size, int bins
 void TransientOutput::consume(TransientTile& tile, int pass) {
   if (tile.border() > 0) return consumeBordered(tile, pass);
   tile.normalize();
+  if (shared_) storedRects_.emplace_back(tile.offset() - film_.cropOffset(), tile.size());
   store(tile.offset() - film_.cropOffset(), tile.size(), tile.bins(), pass, [&](int y) { return tile.row(y); },
         [&](int k, int x, int y) { return k == 0 ? tile.steady(x, y) : k == 1 ? tile.before(x, y) : tile.after(x, y); });
 }
@@ -237,6 +288,7 @@ void TransientOutput::releaseTiles(int row) {
 }
 
 void TransientOutput::endPass(int pass) {
+  if (shared_) return shareStoredPixels();  // no bordered tiles where ranks store their own
   if (pass < 0 || pass != heldPass_) return;
   for (int k = 0; k < int(held_.size()); ++k)
     if (held_[k].present && !held_[k].stored) finalizeTile(k, pass);
@@ -256,7 +308,10 @@ VolumeInfo TransientOutput::volumeInfo(const RenderRecord* record) const {
 }
 
 void TransientOutput::finish(const std::function<void(int done, int total)>& onFrames, const RenderRecord* record) {
-  if (!paths_) return;
+  if (!paths_) {
+    volume_.reset();  // a rank that wrote its tiles into rank 0's volume
+    return;
+  }
   Film::writeExrWithPreview(paths_->steady, steady_);
   writeEXR(paths_->before, before_);
   writeEXR(paths_->after, after_);

@@ -21,6 +21,8 @@
 
 namespace femto {
 
+class TileDistribution;
+
 class TransientOutput {
  public:
   /// `path` as given to the render (see TransientFilm::outputPaths); empty:
@@ -40,7 +42,15 @@ class TransientOutput {
   void consume(TransientTile& tile, int pass = 0);
   /// The end of pass `pass`: bordered tiles still held are stored with the
   /// neighbours that came (all of them, unless the pass was cancelled).
+  /// Where ranks store their own tiles, every rank calls it: the ranks then
+  /// exchange the image pixels they stored (a collective).
   void endPass(int pass);
+  /// Do the processes sharing the render's tiles (tile_distribution.h) each
+  /// store the tiles they render (renderTileStream's consumeWhereRendered)?
+  /// So when there are several and no filter border: every rank writes its
+  /// tiles' rows into the one volume rank 0 created (positioned writes;
+  /// ranks on several nodes need a file system all of them see coherently).
+  bool storesWhereRendered() const { return shared_ != nullptr; }
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
   /// `onFrames(done, total)` is called after each batch of frames written.
@@ -67,6 +77,12 @@ class TransientOutput {
   template <typename RowFn, typename RgbFn>
   void store(const Point2i& origin, const Point2i& size, int bins, int pass, RowFn&& row, RgbFn&& rgb);
   void consumeBordered(TransientTile& tile, int pass);
+  /// The temporary volume, renamed into place by finish().
+  void createVolume();
+  /// Rank 0's temporary volume opened on every rank (a collective).
+  void shareVolume();
+  /// Every rank's stored image pixels of this pass copied to every rank (a collective).
+  void shareStoredPixels();
   /// Store held tile `k` (its neighbours' borders summed in) and free the tiles no longer needed.
   void finalizeTile(int k, int pass);
   void releaseTiles(int row);
@@ -81,6 +97,9 @@ class TransientOutput {
   Point2i tileSide_{0, 0}, tileCount_{0, 0};
   int tileReach_ = 1;  // tiles a border reaches
   int heldPass_ = -1;
+
+  TileDistribution* shared_ = nullptr;  // when ranks store their own tiles
+  std::vector<std::pair<Point2i, Point2i>> storedRects_;  // (origin, size) stored here this pass
 
   const TransientFilm& film_;
   std::optional<TransientFilm::OutputPaths> paths_;

@@ -69,7 +69,8 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     RenderOptions passOptions = options;
     passOptions.seed = passSeed(options.seed, pass);
     accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
-                                                TransientTile::bytesPerPixel(film.timeGrid().bins), &progress));
+                                                TransientTile::bytesPerPixel(film.timeGrid().bins), &progress,
+                                                output.storesWhereRendered()));
     output.endPass(pass);
     if (!stats.completed) break;  // a cancelled pass is partial: not counted
     ++stats.passes;

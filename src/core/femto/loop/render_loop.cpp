@@ -164,12 +164,13 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
 }
 
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
-                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress) {
+                             const TileConsumer& consume, double tileBytesPerPixel, ProgressReporter* jobProgress,
+                             bool consumeWhereRendered) {
   std::optional<tbb::task_arena> arena;
   if (options.threads > 0) arena.emplace(options.threads);
   const size_t tokens = arena ? arena->execute(tilesInFlight) : tilesInFlight();
   const int side = tileSideWithin(tileBytesPerPixel, tokens);
-  TileJob job{scene, options, makeTile, consume, jobProgress, side, cropWindowTiles(scene, side)};
+  TileJob job{scene, options, makeTile, consume, jobProgress, side, cropWindowTiles(scene, side), consumeWhereRendered};
   if (TileDistribution* distribution = tileDistribution()) return distribution->run(job);
   const Point2i crop = scene.sensor().film().cropSize();
   std::optional<ProgressReporter> ownProgress;

@@ -64,9 +64,13 @@ int tileSideWithin(double bytesPerPixel, size_t tilesInFlight);
 /// `progress`: the bar of a longer job this stream is part of (several
 /// passes, frames written after), advanced by one per pixel; null: a bar of
 /// its own, when options.progress.
+/// `consumeWhereRendered`: when several processes share the tiles
+/// (tile_distribution.h), each consumes the tiles it rendered, in the order
+/// it was given them, instead of sending them to one consumer. Only for a
+/// consumer whose result for a pixel depends on that pixel's tile alone.
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
                              const TileConsumer& consume, double tileBytesPerPixel = 0.0,
-                             ProgressReporter* progress = nullptr);
+                             ProgressReporter* progress = nullptr, bool consumeWhereRendered = false);
 
 /// Called per sample: returns the value to splat at `filmPos` (full-film pixels).
 using SampleFunction = std::function<Color3f(const Point2f& filmPos, Sampler& sampler)>;

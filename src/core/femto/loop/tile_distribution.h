@@ -35,6 +35,7 @@ struct TileJob {
   ProgressReporter* progress;     // the bar of the whole job, advanced per pixel; null: the stream draws its own
   int tileSide;                   // of the tiles below (tileSideWithin: smaller with more threads for huge tiles)
   std::vector<RenderTile> tiles;  // every tile of the crop window, in tile order
+  bool consumeWhereRendered = false;  // each process consumes its own tiles (renderTileStream)
 };
 
 /// The crop window's tiles of side `side` (tileSideWithin), in tile order
@@ -55,8 +56,11 @@ class TileDistribution {
   virtual ~TileDistribution() = default;
   /// Render `job` across the processes. The consuming process calls
   /// job.consume for every rendered tile in tile order (after a cancel: the
-  /// tiles begun, a prefix of that order); the others consume nothing. Every
-  /// process returns the statistics of the whole job.
+  /// tiles begun, a prefix of that order); the others consume nothing. With
+  /// job.consumeWhereRendered every process consumes the tiles it rendered,
+  /// in the order it was given them, and the job's stream ends on every
+  /// process only after all have consumed theirs. Every process returns the
+  /// statistics of the whole job.
   virtual RenderStats run(TileJob& job) = 0;
   /// This process's rank among ranks() (for work split by index, as photon
   /// passes are: every rank traces its share and gatherAll exchanges them).
