@@ -110,6 +110,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
 
   std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
   uint64_t bytesReceived = 0, tilesReceived = 0;
+  double coordinationSeconds = 0.0;  // answering requests and taking tiles in (not the waits for them)
   LocalTiles local(job);
   bool localOpen = true;
   auto feedLocal = [&] {
@@ -144,6 +145,14 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &status), "probe");
     if (flag) {
       busy = true;
+      const auto messageStart = std::chrono::steady_clock::now();
+      // What rank 0 does for the others, serially: the scaling model's
+      // per-tile cost (docs/BENCHMARKS.md, "Strong scaling").
+      struct Timed {
+        std::chrono::steady_clock::time_point start;
+        double& seconds;
+        ~Timed() { seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+      } timed{messageStart, coordinationSeconds};
       if (status.MPI_TAG == Request) {
         answer(status.MPI_SOURCE);
       } else if (status.MPI_TAG == TileData) {
@@ -194,7 +203,8 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   for (size_t n : perRank) counts += str(" ", n);
   logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
            bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)",
-           job.consumeWhereRendered ? "; each rank stored its own tiles" : "");
+           job.consumeWhereRendered ? "; each rank stored its own tiles" : "", "; rank 0 spent ",
+           coordinationSeconds * 1e6 / double(std::max<size_t>(next, 1)), " us per tile on the others' requests and tiles");
   return stats;
 }
 

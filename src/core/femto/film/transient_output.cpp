@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <cstdio>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include <femto/base/error.h>
 #include <femto/base/thread_edges.h>
+#include <femto/core/log.h>
 #include <femto/core/resources.h>
 #include <femto/film/volume_info.h>
 #include <femto/film/volume_scan.h>
@@ -140,6 +142,7 @@ void TransientOutput::shareStoredPixels() {
       for (int y = 0; y < size.y; ++y) put(image->pixel(origin.x, origin.y + y), size_t(size.x) * 3 * sizeof(float));
   }
   storedRects_.clear();
+  const auto start = std::chrono::steady_clock::now();
   const std::vector<char> all = shared_->gatherAll(mine);
   for (size_t at = 0; at < all.size();) {
     int rect[4];
@@ -149,6 +152,8 @@ void TransientOutput::shareStoredPixels() {
     for (Bitmap* image : {&steady_, &before_, &after_})
       for (int y = 0; y < rect[3]; ++y, at += rowBytes) std::memcpy(image->pixel(rect[0], rect[1] + y), &all[at], rowBytes);
   }
+  logDebug("the ranks exchanged the pass's stored image pixels (", all.size(), " bytes) in ",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), " s");
 }
 
 TransientOutput::~TransientOutput() {
