@@ -104,10 +104,18 @@ while [ "$i" -lt "$large_runs" ]; do
   done
   i=$((i + 1))
 done
+# The disk the volumes go to: 2 GB written and flushed (a 512x512 x 4096 volume is 12.9 GB,
+# more than the page cache holds dirty, so its passes wait on the disk).
+disk=$(dd if=/dev/zero of="$work/disk" bs=1M count=2048 conv=fdatasync 2>&1 | sed -n 's/.*, \([0-9.]* [MG]B\/s\)$/\1/p')
+rm -f "$work/disk"
 load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 . tools/bench/provenance.sh
-# ratio NAME FIELD: T(1) / (2 T(2)) by field 1 (CPU) or 2 (wall).
-ratio() { awk -v a="$(median "$work/${1}1" "$2")" -v b="$(median "$work/${1}2" "$2")" 'BEGIN { printf "%.2f", a / (2 * b) }'; }
+# ratio NAME FIELD: by wall time (field 2) T(1) / (2 T(2)); by CPU time (field 1,
+# already summed over the ranks) CPU(1) / CPU(2).
+ratio() {
+  awk -v a="$(median "$work/${1}1" "$2")" -v b="$(median "$work/${1}2" "$2")" -v k="$((3 - $2))" \
+    'BEGIN { printf "%.2f", a / ((k == 1 ? 2 : 1) * b) }'
+}
 # rank0 NAME: rank 0's coordination per tile and the image bytes exchanged per pass (first pass).
 rank0() {
   us=$(sed -n 's/.*rank 0 spent \([0-9.e+-]*\) us per tile.*/\1/p' "$work/${1}2.log" | awk '{ s += $1; n++ } END { if (n) printf "%.1f", s / n }')
@@ -125,7 +133,9 @@ out=docs/BENCHMARKS.md
   echo "- load average (1, 5, 15 min) at the start: $load_start; at the end: $load_end"
   echo "- commit: $commit$dirty, $(date -u +%Y-%m-%d)"
   echo "- command: \`tools/bench/run_mpi_bench.sh\` ($runs runs per 128x128 case, $large_runs per 512x512 case, medians; the volumes of 1 and 2 ranks compared bit for bit)"
-  echo "- **efficiency** = T(1 process) / (2 x T(2 ranks)), by wall time and by CPU time (mpirun and both ranks)."
+  echo "- disk of the output folder: $disk (2 GB written with \`dd conv=fdatasync\`); RAM $(free -g | awk '/^Mem:/ { print $2 }') GiB"
+  echo "- **efficiency** = wall time of 1 process / (2 x wall time of 2 ranks), and CPU time of 1 process / CPU time of"
+  echo "  the 2-rank job (mpirun and both ranks)."
   echo "  Each rank stores the tiles it renders into the one volume; rank 0 only hands out tiles."
   echo
   echo "| render | wall 1 process (s) | wall 2 ranks (s) | **efficiency (wall)** | CPU 1 (s) | CPU 2 (s) | efficiency (CPU) | rank 0 for the others |"

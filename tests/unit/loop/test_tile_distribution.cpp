@@ -30,20 +30,25 @@ class ReversedShippingDistribution final : public TileDistribution {
     RenderStats stats;
     auto claim = [&]() -> RenderTile* { return next == 0 ? nullptr : &job.tiles[--next]; };
     auto deliver = [&](RenderTile& tile) {
+      stats.samples += tile.samples, stats.invalidSamples += tile.invalid;
+      if (!tile.accumulator) {  // stored by the thread that rendered it (job.consumeWhereRendered)
+        ++storedWhereRendered;
+        return;
+      }
       std::vector<float> sums;
       tile.accumulator->pack(sums);
       tile.accumulator.reset();
       received[tile.index] = job.makeTile(tile.offset, tile.size);
       received[tile.index]->unpack(sums.data(), sums.size());
-      stats.samples += tile.samples, stats.invalidSamples += tile.invalid;
       floatsShipped += sums.size();
     };
     renderClaimedTiles(job, claim, deliver);
-    for (auto& tile : received) job.consume(*tile);
+    for (auto& tile : received)
+      if (tile) job.consume(*tile);
     stats.completed = true;
     return stats;
   }
-  size_t floatsShipped = 0;
+  size_t floatsShipped = 0, storedWhereRendered = 0;
 };
 
 /// Installs a distribution for one scope.
@@ -66,7 +71,7 @@ RenderStats render(const Scene& scene, const std::filesystem::path& out) {
   return scene.integrator().render(scene, options);
 }
 
-std::shared_ptr<Scene> rampScene(const char* filmType, int width, int height) {
+std::shared_ptr<Scene> rampScene(const char* filmType, int width, int height, bool gaussian = false) {
   Properties film(filmType);
   film.setInt("width", width);
   film.setInt("height", height);
@@ -76,7 +81,8 @@ std::shared_ptr<Scene> rampScene(const char* filmType, int width, int height) {
     film.setFloat("bin_width_opl", 2.0);
     film.setString("time_filter", "tent");
     film.setBool("write_frames", false);
-  } else {
+  }
+  if (gaussian || std::string(filmType) != "transient") {
     // Wider than a pixel: neighbouring tiles' blocks overlap, so the merge
     // order shows in the bits.
     Properties gaussian("gaussian");
@@ -103,20 +109,35 @@ TEST(TileDistribution, SteadyImageShippedBetweenAccumulatorsIsBitwiseTheSame) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(TileDistribution, TransientVolumeShippedBetweenAccumulatorsIsBitwiseTheSame) {
-  auto dir = test::scratchDir("distribution-transient");
-  auto scene = rampScene("transient", 70, 40);
-  render(*scene, dir / "plain.exr");
+/// A transient render through the reversed distribution has the bits of the plain one.
+ReversedShippingDistribution expectTransientBitwiseTheSame(const Scene& scene, const char* name) {
+  auto dir = test::scratchDir(name);
+  render(scene, dir / "plain.exr");
   ReversedShippingDistribution distribution;
   {
     ScopedDistribution scope(distribution);
-    render(*scene, dir / "shipped.exr");
+    render(scene, dir / "shipped.exr");
   }
-  // Per tile: bins x 3 volume floats, 3 x 3 steady/before/after and a weight per pixel.
-  EXPECT_EQ(distribution.floatsShipped, size_t(70 * 40) * (24 * 3 + 10));
-  for (const char* name : {".npy", ".exr", "_before.exr", "_after.exr"})
-    EXPECT_EQ(fileBytes(dir / (std::string("plain") + name)), fileBytes(dir / (std::string("shipped") + name))) << name;
+  for (const char* file : {".npy", ".exr", "_before.exr", "_after.exr"})
+    EXPECT_EQ(fileBytes(dir / (std::string("plain") + file)), fileBytes(dir / (std::string("shipped") + file))) << file;
   std::filesystem::remove_all(dir);
+  return distribution;
+}
+
+TEST(TileDistribution, TransientVolumeShippedBetweenAccumulatorsIsBitwiseTheSame) {
+  // A pixel filter wider than a pixel: tiles carry borders, shipped and merged in tile order.
+  auto scene = rampScene("transient", 70, 40, /*gaussian=*/true);
+  ReversedShippingDistribution distribution = expectTransientBitwiseTheSame(*scene, "distribution-transient");
+  EXPECT_GT(distribution.floatsShipped, size_t(70 * 40) * (24 * 3 + 10));
+  EXPECT_EQ(distribution.storedWhereRendered, 0u);
+}
+
+TEST(TileDistribution, TransientTilesStoredWhereRenderedInAnyOrderAreBitwiseTheSame) {
+  // The box filter: each tile is stored alone, by the thread that rendered it, last tile first.
+  auto scene = rampScene("transient", 70, 40);
+  ReversedShippingDistribution distribution = expectTransientBitwiseTheSame(*scene, "distribution-stored");
+  EXPECT_EQ(distribution.floatsShipped, 0u);
+  EXPECT_EQ(distribution.storedWhereRendered, 6u);  // 70 x 40 in 32-pixel tiles
 }
 
 TEST(TileDistribution, SumsOfAnotherTileAreRefused) {

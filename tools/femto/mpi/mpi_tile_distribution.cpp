@@ -46,14 +46,14 @@ RenderStats MpiTileDistribution::run(TileJob& job) {
   // Each rank keeps a few tiles queued (LocalTiles::wanted), so the last
   // ones may wait on one rank while another has none: cut tiles small
   // enough that every thread of the job gets many (at least 64 tiles a
-  // thread, or 8-pixel tiles). Only where each tile's pixels are stored
+  // thread, or 4-pixel tiles). Only where each tile's pixels are stored
   // alone: filters' borders are summed in tile order, which the side changes.
   if (job.consumeWhereRendered) {
     int threads = LocalTiles::threadsOf(job);
     check(MPI_Allreduce(MPI_IN_PLACE, &threads, 1, MPI_INT, MPI_SUM, comm_), "reduce");
     const Point2i crop = job.scene.sensor().film().cropSize();
     const double balanced = std::sqrt(double(crop.x) * double(crop.y) / (64.0 * threads));
-    side = std::clamp(int(balanced), std::min(side, 8), side);
+    side = std::clamp(int(balanced), std::min(side, 4), side);
   }
   if (side != job.tileSide) job.tiles = cropWindowTiles(job.scene, side), job.tileSide = side;
   if (rank_ == 0) return shareStats(coordinate(job));
@@ -178,10 +178,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
         throw Error(str("rank ", status.MPI_SOURCE, " sent an unexpected message (tag ", status.MPI_TAG, ")"));
       }
     }
-    for (RenderTile* tile : local.takeFinished()) {
-      if (job.consumeWhereRendered) job.consume(*tile->accumulator), tile->accumulator.reset();
-      arrived(*tile), busy = true;
-    }
+    for (RenderTile* tile : local.takeFinished()) arrived(*tile), busy = true;
     // Fold in tile order, as one process does: the sums are then the same
     // bits (tiles consumed where rendered are only counted here).
     while (consumed < next && ready[consumed]) {
@@ -235,10 +232,7 @@ void MpiTileDistribution::work(TileJob& job) {
     for (RenderTile* tile : local.takeFinished()) {
       busy = true;
       buffer.clear();
-      if (job.consumeWhereRendered)
-        job.consume(*tile->accumulator);
-      else
-        tile->accumulator->pack(buffer);
+      if (tile->accumulator) tile->accumulator->pack(buffer);  // else stored where rendered
       TileHeader header{tile->index, tile->samples, tile->invalid};
       buffer.insert(buffer.begin(), HeaderFloats, 0.0f);
       std::memcpy(buffer.data(), &header, sizeof(header));

@@ -4,11 +4,13 @@
 #include <femto/render/rfilter.h>
 
 #include <tbb/parallel_for.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <mutex>
 #include <cstdio>
 #include <string>
 #include <system_error>
@@ -90,13 +92,14 @@ TransientOutput::TransientOutput(const TransientFilm& film, const std::filesyste
                       film.timeGrid().bins, " bins)"),
                   "use <rfilter type=\"box\"/>, fewer time bins or a narrower image");
   }
-  TileDistribution* distribution = tileDistribution();
-  if (distribution && distribution->ranks() > 1 && !bordered) shared_ = distribution;
   if (!path.empty()) {
     paths_ = film.outputPaths(path);
     if (film.writesVolume() || film.writesFrames()) createVolume();
   }
-  if (shared_) shareVolume();
+  TileDistribution* distribution = tileDistribution();
+  const bool distributed = distribution && distribution->ranks() > 1;
+  if (distributed && !bordered) shareVolume(*distribution);
+  storesAlone_ = !bordered && (!distributed || shared_);
 }
 
 void TransientOutput::createVolume() {
@@ -117,13 +120,40 @@ void TransientOutput::createVolume() {
   volume_.emplace(NpyVolume::create(volumeTmp_, crop.y, crop.x, film.timeGrid().bins));
 }
 
-void TransientOutput::shareVolume() {
-  // Rank 0 (the one given a path) names its temporary volume; the others
-  // open it to write their tiles' rows. It stays rank 0's to rename or remove.
-  const std::string mine = volume_ ? volumeTmp_.string() : std::string();
-  const std::vector<char> all = shared_->gatherAll(std::vector<char>(mine.begin(), mine.end()));
-  if (volume_ || all.empty()) return;
-  volume_.emplace(NpyVolume::open(std::filesystem::path(std::string(all.begin(), all.end())), /*writable=*/true));
+namespace {
+
+/// Is `folder` on a network file system whose clients cache pages without
+/// seeing each other's writes at once (NFS, SMB)? Ranks on several nodes
+/// cannot then read back the rows another rank wrote the pass before.
+bool cachesWithoutCoherence(const std::filesystem::path& folder) {
+  struct statfs info {};
+  if (::statfs(folder.c_str(), &info) != 0) return false;
+  constexpr long NfsMagic = 0x6969, SmbMagic = 0x517B, Smb2Magic = 0xFE534D42, CifsMagic = 0xFF534D42;
+  const long type = long(info.f_type);
+  return type == NfsMagic || type == SmbMagic || type == Smb2Magic || type == CifsMagic;
+}
+
+}  // namespace
+
+void TransientOutput::shareVolume(TileDistribution& distribution) {
+  // Rank 0 (the one given a path) decides and names its temporary volume:
+  // "+path" (or "+" with no volume) and every rank stores the tiles it
+  // renders, the others opening the volume to write their rows; "-" and rank
+  // 0 stores every tile. The volume stays rank 0's to rename or remove.
+  std::vector<char> mine;
+  if (paths_) mine.push_back(volume_ && cachesWithoutCoherence(volumeTmp_.parent_path()) ? '-' : '+');
+  if (volume_ && mine[0] == '+') {
+    const std::string path = volumeTmp_.string();
+    mine.insert(mine.end(), path.begin(), path.end());
+  }
+  const std::vector<char> all = distribution.gatherAll(mine);
+  if (!all.empty() && all[0] == '-') {
+    logInfo("the output folder is on a network file system (NFS or SMB): rank 0 writes every tile of the volume");
+    return;
+  }
+  shared_ = &distribution;
+  if (!volume_ && all.size() > 1)
+    volume_.emplace(NpyVolume::open(std::filesystem::path(std::string(all.begin() + 1, all.end())), /*writable=*/true));
 }
 
 void TransientOutput::shareStoredPixels() {
@@ -196,7 +226,10 @@ void TransientOutput::store(const Point2i& origin, const Point2i& size, int bins
 void TransientOutput::consume(TransientTile& tile, int pass) {
   if (tile.border() > 0) return consumeBordered(tile, pass);
   tile.normalize();
-  if (shared_) storedRects_.emplace_back(tile.offset() - film_.cropOffset(), tile.size());
+  if (shared_) {
+    std::lock_guard lock(storedMutex_);  // tiles stored alone are stored in parallel
+    storedRects_.emplace_back(tile.offset() - film_.cropOffset(), tile.size());
+  }
   store(tile.offset() - film_.cropOffset(), tile.size(), tile.bins(), pass, [&](int y) { return tile.row(y); },
         [&](int k, int x, int y) { return k == 0 ? tile.steady(x, y) : k == 1 ? tile.before(x, y) : tile.after(x, y); });
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -45,12 +46,14 @@ class TransientOutput {
   /// Where ranks store their own tiles, every rank calls it: the ranks then
   /// exchange the image pixels they stored (a collective).
   void endPass(int pass);
-  /// Do the processes sharing the render's tiles (tile_distribution.h) each
-  /// store the tiles they render (renderTileStream's consumeWhereRendered)?
-  /// So when there are several and no filter border: every rank writes its
-  /// tiles' rows into the one volume rank 0 created (positioned writes;
-  /// ranks on several nodes need a file system all of them see coherently).
-  bool storesWhereRendered() const { return shared_ != nullptr; }
+  /// Is each tile stored alone, so consume() may run in parallel on the
+  /// threads that render the tiles (renderTileStream's consumeWhereRendered)?
+  /// So without a filter border. When processes share the render's tiles
+  /// (tile_distribution.h) each then stores the tiles it renders, writing
+  /// their rows into the one volume rank 0 created (positioned writes, which
+  /// every node must see coherently: not when the output folder is on NFS
+  /// or SMB, where rank 0 stores every tile).
+  bool storesTilesAlone() const { return storesAlone_; }
   /// Write the steady EXR + PNG, before/after EXRs and the frames, and put the
   /// volume in place. Call once, after the last tile (also after a cancel).
   /// `onFrames(done, total)` is called after each batch of frames written.
@@ -79,8 +82,9 @@ class TransientOutput {
   void consumeBordered(TransientTile& tile, int pass);
   /// The temporary volume, renamed into place by finish().
   void createVolume();
-  /// Rank 0's temporary volume opened on every rank (a collective).
-  void shareVolume();
+  /// Whether the ranks store their own tiles, and if so rank 0's temporary
+  /// volume opened on every rank (a collective).
+  void shareVolume(TileDistribution& distribution);
   /// Every rank's stored image pixels of this pass copied to every rank (a collective).
   void shareStoredPixels();
   /// Store held tile `k` (its neighbours' borders summed in) and free the tiles no longer needed.
@@ -98,7 +102,9 @@ class TransientOutput {
   int tileReach_ = 1;  // tiles a border reaches
   int heldPass_ = -1;
 
+  bool storesAlone_ = false;
   TileDistribution* shared_ = nullptr;  // when ranks store their own tiles
+  std::mutex storedMutex_;
   std::vector<std::pair<Point2i, Point2i>> storedRects_;  // (origin, size) stored here this pass
 
   const TransientFilm& film_;

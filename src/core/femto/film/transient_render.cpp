@@ -70,7 +70,7 @@ RenderStats renderTransient(const Scene& scene, const TransientFilm& film, const
     passOptions.seed = passSeed(options.seed, pass);
     accumulatePassStats(stats, renderTileStream(scene, passOptions, makeTile, consume,
                                                 TransientTile::bytesPerPixel(film.timeGrid().bins), &progress,
-                                                output.storesWhereRendered()));
+                                                output.storesTilesAlone()));
     output.endPass(pass);
     if (!stats.completed) break;  // a cancelled pass is partial: not counted
     ++stats.passes;

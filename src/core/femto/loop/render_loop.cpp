@@ -135,6 +135,13 @@ void renderClaimedTiles(const TileJob& job, const std::function<RenderTile*()>& 
   auto renderStage = [&](RenderTile* tile) {
     acquireFrom(tile);
     renderTile(*tile, prototype, film.size().x, seed, job.makeTile);
+    // A tile whose pixels are stored alone is stored by the thread that
+    // rendered it, in parallel with the others (the fold of a many-bin
+    // volume would otherwise be one thread's work).
+    if (job.consumeWhereRendered) {
+      job.consume(*tile->accumulator);
+      tile->accumulator.reset();
+    }
     releaseTo(tile);
     return tile;
   };
@@ -191,7 +198,7 @@ RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, c
   };
   auto deliver = [&](RenderTile& tile) {
     progress.update(uint64_t(tile.size.x) * uint64_t(tile.size.y));
-    consume(*tile.accumulator);
+    if (tile.accumulator) consume(*tile.accumulator);  // else stored where rendered
     tile.accumulator.reset();
     stats.samples += tile.samples;
     stats.invalidSamples += tile.invalid;

@@ -64,10 +64,10 @@ int tileSideWithin(double bytesPerPixel, size_t tilesInFlight);
 /// `progress`: the bar of a longer job this stream is part of (several
 /// passes, frames written after), advanced by one per pixel; null: a bar of
 /// its own, when options.progress.
-/// `consumeWhereRendered`: when several processes share the tiles
-/// (tile_distribution.h), each consumes the tiles it rendered, in the order
-/// it was given them, instead of sending them to one consumer. Only for a
-/// consumer whose result for a pixel depends on that pixel's tile alone.
+/// `consumeWhereRendered`: each tile is consumed by the thread that rendered
+/// it, in parallel and in no fixed order (when several processes share the
+/// tiles, tile_distribution.h, by the process that rendered it). Only for a
+/// thread-safe consumer whose result for a pixel depends on its tile alone.
 RenderStats renderTileStream(const Scene& scene, const RenderOptions& options, const TileFactory& makeTile,
                              const TileConsumer& consume, double tileBytesPerPixel = 0.0,
                              ProgressReporter* progress = nullptr, bool consumeWhereRendered = false);

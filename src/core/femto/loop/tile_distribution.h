@@ -57,9 +57,9 @@ class TileDistribution {
   /// Render `job` across the processes. The consuming process calls
   /// job.consume for every rendered tile in tile order (after a cancel: the
   /// tiles begun, a prefix of that order); the others consume nothing. With
-  /// job.consumeWhereRendered every process consumes the tiles it rendered,
-  /// in the order it was given them, and the job's stream ends on every
-  /// process only after all have consumed theirs. Every process returns the
+  /// job.consumeWhereRendered every process consumes the tiles it rendered
+  /// (renderClaimedTiles does, as it renders them), and the job's stream ends
+  /// on every process only after all have consumed theirs. Every process returns the
   /// statistics of the whole job.
   virtual RenderStats run(TileJob& job) = 0;
   /// This process's rank among ranks() (for work split by index, as photon
