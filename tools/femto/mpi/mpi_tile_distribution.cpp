@@ -42,7 +42,7 @@ RenderStats MpiTileDistribution::run(TileJob& job) {
   // count when tiles are huge (tileSideWithin), so take the smallest, which
   // fits every rank's memory bound.
   int side = job.tileSide;
-  check(MPI_Allreduce(MPI_IN_PLACE, &side, 1, MPI_INT, MPI_MIN, comm_), "reduce");
+  allreduceSleeping(&side, MPI_MIN);
   // Each rank keeps a few tiles queued (LocalTiles::wanted), so the last
   // ones may wait on one rank while another has none: cut tiles small
   // enough that every thread of the job gets many (at least 64 tiles a
@@ -50,7 +50,7 @@ RenderStats MpiTileDistribution::run(TileJob& job) {
   // alone: filters' borders are summed in tile order, which the side changes.
   if (job.consumeWhereRendered) {
     int threads = LocalTiles::threadsOf(job);
-    check(MPI_Allreduce(MPI_IN_PLACE, &threads, 1, MPI_INT, MPI_SUM, comm_), "reduce");
+    allreduceSleeping(&threads, MPI_SUM);
     const Point2i crop = job.scene.sensor().film().cropSize();
     const double balanced = std::sqrt(double(crop.x) * double(crop.y) / (64.0 * threads));
     side = std::clamp(int(balanced), std::min(side, 4), side);
@@ -59,6 +59,12 @@ RenderStats MpiTileDistribution::run(TileJob& job) {
   if (rank_ == 0) return shareStats(coordinate(job));
   work(job);
   return shareStats(RenderStats());
+}
+
+void MpiTileDistribution::allreduceSleeping(int* value, MPI_Op op) {
+  MPI_Request request;
+  check(MPI_Iallreduce(MPI_IN_PLACE, value, 1, MPI_INT, op, comm_, &request), "reduce");
+  waitSleeping(request);
 }
 
 RenderStats MpiTileDistribution::shareStats(const RenderStats& stats) {
@@ -248,7 +254,11 @@ void MpiTileDistribution::work(TileJob& job) {
 std::vector<char> MpiTileDistribution::gatherAll(const std::vector<char>& mine) {
   uint64_t size = mine.size();
   std::vector<uint64_t> sizes(size_t(size_), 0);
-  check(MPI_Allgather(&size, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, comm_), "gather sizes");
+  // Non-blocking and waited for sleeping, as every collective here: a rank
+  // that comes first (its tiles done) must not spin a core the others render on.
+  MPI_Request request;
+  check(MPI_Iallgather(&size, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, comm_, &request), "gather sizes");
+  waitSleeping(request);
   std::vector<int> counts(static_cast<size_t>(size_), 0), offsets(static_cast<size_t>(size_), 0);
   uint64_t total = 0;
   for (int r = 0; r < size_; ++r) {
@@ -260,8 +270,10 @@ std::vector<char> MpiTileDistribution::gatherAll(const std::vector<char>& mine) 
     total += sizes[size_t(r)];
   }
   std::vector<char> all(total);
-  check(MPI_Allgatherv(mine.data(), int(size), MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, comm_),
+  check(MPI_Iallgatherv(mine.data(), int(size), MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, comm_,
+                       &request),
         "gather");
+  waitSleeping(request);
   return all;
 }
 

@@ -36,6 +36,8 @@ class MpiTileDistribution final : public TileDistribution {
   RenderStats coordinate(TileJob& job);
   void work(TileJob& job);
   RenderStats shareStats(const RenderStats& stats);
+  /// MPI_Allreduce of one int, waited for sleeping (mpi_wait.h).
+  void allreduceSleeping(int* value, MPI_Op op);
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
 };
