@@ -150,6 +150,8 @@ out=docs/BENCHMARKS.md
   echo "The machine's own ceiling: two independent one-process renders of the 128x128 transient_path case at once"
   echo "take $(median "$work/path_small_both" 2) s of wall time against $(median "$work/path_small1" 2) s alone (runs: $(runs_of "$work/path_small_both" 2)): **$ceiling**,"
   echo "what two ranks could reach at best here (two processes on the 2 cores run each slower than one alone)."
+  echo "Against that ceiling, the wall efficiencies above read: $(for case in path_small beams_small path_large beams_large; do
+    printf '%s %s; ' "$case" "$(awk -v e="$(ratio "$case" 2)" -v c="$ceiling" 'BEGIN { printf "%.2f", e / c }')"; done)"
   echo
   echo "Start-up (\`$start_args\`): wall $(median "$work/start1" 2) s for one process, $(median "$work/start2" 2) s for two ranks (mpirun);"
   echo "CPU $(median "$work/start1" 1) s and $(median "$work/start2" 1) s."
