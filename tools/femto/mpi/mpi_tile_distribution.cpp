@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -20,11 +21,22 @@ namespace {
 
 enum Tag : int { Request = 1, Assign = 2, TileData = 3 };
 
+/// A TileData message: how many more tiles the sender wants (a request
+/// riding along; 0: none), then `tiles` headers, then the packed sums of the
+/// one tile when it was not stored where rendered.
+struct MessageHead {
+  uint64_t more, tiles;
+};
 struct TileHeader {
   uint64_t index, samples, invalid;
 };
-constexpr size_t HeaderFloats = sizeof(TileHeader) / sizeof(float);
-static_assert(sizeof(TileHeader) % sizeof(float) == 0);
+static_assert(sizeof(MessageHead) % sizeof(float) == 0 && sizeof(TileHeader) % sizeof(float) == 0);
+
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw Error(str("MPI ", what, " failed (error ", code, ")"));
@@ -116,7 +128,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
 
   std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
   uint64_t bytesReceived = 0, tilesReceived = 0;
-  double coordinationSeconds = 0.0;  // answering requests and taking tiles in (not the waits for them)
+  double coordinationSeconds = 0.0;  // CPU answering requests and taking tiles in
   LocalTiles local(job);
   bool localOpen = true;
   auto feedLocal = [&] {
@@ -126,16 +138,20 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
       for (uint64_t id : ids) local.assign(&tiles[id]), ++perRank[0];
     }
   };
+  // Sends `rank` up to `count` more tiles (none: it is done).
+  auto assign = [&](int rank, uint64_t count) {
+    std::vector<uint64_t> ids = handOut(count);
+    if (ids.empty()) --workersOpen;
+    perRank[size_t(rank)] += ids.size();
+    check(MPI_Send(ids.data(), int(ids.size()), MPI_UINT64_T, rank, Assign, comm_), "send");
+  };
   // Receives `rank`'s request (sleeping while it has not come) and answers it.
   auto answer = [&](int rank) {
     uint64_t count = 0;
     MPI_Request request;
     check(MPI_Irecv(&count, 1, MPI_UINT64_T, rank, Request, comm_, &request), "receive");
     waitSleeping(request);
-    std::vector<uint64_t> ids = handOut(count);
-    if (ids.empty()) --workersOpen;
-    perRank[size_t(rank)] += ids.size();
-    check(MPI_Send(ids.data(), int(ids.size()), MPI_UINT64_T, rank, Assign, comm_), "send");
+    assign(rank, count);
   };
   // The first round in rank order, waiting for every rank's first request:
   // every rank starts with work (whoever loaded the scene first), and which
@@ -151,14 +167,14 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &status), "probe");
     if (flag) {
       busy = true;
-      const auto messageStart = std::chrono::steady_clock::now();
       // What rank 0 does for the others, serially: the scaling model's
-      // per-tile cost (docs/BENCHMARKS.md, "Strong scaling").
+      // per-tile cost (docs/BENCHMARKS.md, "Strong scaling"), in this
+      // thread's CPU time (its wall time would count the render threads
+      // that preempt it).
       struct Timed {
-        std::chrono::steady_clock::time_point start;
-        double& seconds;
-        ~Timed() { seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
-      } timed{messageStart, coordinationSeconds};
+        double start, &seconds;
+        ~Timed() { seconds += threadCpuSeconds() - start; }
+      } timed{threadCpuSeconds(), coordinationSeconds};
       if (status.MPI_TAG == Request) {
         answer(status.MPI_SOURCE);
       } else if (status.MPI_TAG == TileData) {
@@ -167,19 +183,30 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
         buffer.resize(size_t(floats));
         check(MPI_Recv(buffer.data(), floats, MPI_FLOAT, status.MPI_SOURCE, TileData, comm_, MPI_STATUS_IGNORE),
               "receive");
-        TileHeader header;
-        std::memcpy(&header, buffer.data(), sizeof(header));
-        if (header.index >= next || ready[header.index])
-          throw Error(str("rank ", status.MPI_SOURCE, " sent tile ", header.index, ", which it was not given"));
-        RenderTile& tile = tiles[header.index];
-        // Consumed where rendered: only the header comes.
-        if (!job.consumeWhereRendered) {
-          tile.accumulator = job.makeTile(tile.offset, tile.size);
-          tile.accumulator->unpack(buffer.data() + HeaderFloats, buffer.size() - HeaderFloats);
+        MessageHead head;
+        const char* bytes = reinterpret_cast<const char*>(buffer.data());
+        const size_t size = buffer.size() * sizeof(float);
+        std::memcpy(&head, bytes, sizeof(head));
+        if (sizeof(head) + head.tiles * sizeof(TileHeader) > size || (!job.consumeWhereRendered && head.tiles != 1))
+          throw Error(str("rank ", status.MPI_SOURCE, " sent a malformed tile message"));
+        for (uint64_t k = 0; k < head.tiles; ++k) {
+          TileHeader header;
+          std::memcpy(&header, bytes + sizeof(head) + k * sizeof(header), sizeof(header));
+          if (header.index >= next || ready[header.index])
+            throw Error(str("rank ", status.MPI_SOURCE, " sent tile ", header.index, ", which it was not given"));
+          RenderTile& tile = tiles[header.index];
+          // Stored where rendered: only the header comes.
+          if (!job.consumeWhereRendered) {
+            const size_t at = (sizeof(head) + sizeof(header)) / sizeof(float);
+            tile.accumulator = job.makeTile(tile.offset, tile.size);
+            tile.accumulator->unpack(buffer.data() + at, buffer.size() - at);
+          }
+          tile.samples = header.samples, tile.invalid = header.invalid;
+          ++tilesReceived;
+          arrived(tile);
         }
-        tile.samples = header.samples, tile.invalid = header.invalid;
-        bytesReceived += uint64_t(floats) * sizeof(float), ++tilesReceived;
-        arrived(tile);
+        bytesReceived += size;
+        if (head.more > 0) assign(status.MPI_SOURCE, head.more);
       } else {
         throw Error(str("rank ", status.MPI_SOURCE, " sent an unexpected message (tag ", status.MPI_TAG, ")"));
       }
@@ -207,7 +234,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
            bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)",
            job.consumeWhereRendered ? "; each rank stored its own tiles" : "", "; rank 0 spent ",
-           coordinationSeconds * 1e6 / double(std::max<size_t>(next, 1)), " us per tile on the others' requests and tiles");
+           coordinationSeconds * 1e6 / double(std::max<size_t>(next, 1)), " us of CPU per tile on the others' requests and tiles");
   return stats;
 }
 
@@ -235,17 +262,31 @@ void MpiTileDistribution::work(TileJob& job) {
       if (ids.empty()) local.close(), open = false;
       for (uint64_t id : ids) local.assign(&job.tiles.at(id));
     }
-    for (RenderTile* tile : local.takeFinished()) {
+    // Finished tiles go back with the next request riding along (one
+    // message for every tile stored here; one per tile whose sums travel).
+    std::vector<RenderTile*> finished = local.takeFinished();
+    for (size_t first = 0; first < finished.size();) {
       busy = true;
+      const size_t count = job.consumeWhereRendered ? finished.size() - first : 1;
+      MessageHead head{0, count};
+      if (open && !asking && local.pending() < local.wanted()) head.more = local.wanted() - local.pending(), asking = true;
+      std::vector<char> bytes(sizeof(head));
+      std::memcpy(bytes.data(), &head, sizeof(head));
+      for (size_t k = first; k < first + count; ++k) {
+        const TileHeader header{finished[k]->index, finished[k]->samples, finished[k]->invalid};
+        const char* p = reinterpret_cast<const char*>(&header);
+        bytes.insert(bytes.end(), p, p + sizeof(header));
+      }
       buffer.clear();
-      if (tile->accumulator) tile->accumulator->pack(buffer);  // else stored where rendered
-      TileHeader header{tile->index, tile->samples, tile->invalid};
-      buffer.insert(buffer.begin(), HeaderFloats, 0.0f);
-      std::memcpy(buffer.data(), &header, sizeof(header));
-      tile->accumulator.reset();
+      RenderTile& tile = *finished[first];
+      if (tile.accumulator) tile.accumulator->pack(buffer);  // else stored where rendered
+      tile.accumulator.reset();
+      buffer.insert(buffer.begin(), bytes.size() / sizeof(float), 0.0f);
+      std::memcpy(buffer.data(), bytes.data(), bytes.size());
       MPI_Request request;
       check(MPI_Isend(buffer.data(), int(buffer.size()), MPI_FLOAT, 0, TileData, comm_, &request), "send");
       waitSleeping(request);  // until rank 0 takes it (it may be folding tiles)
+      first += count;
     }
     if (!busy) local.waitForFinished(PollInterval);
   }

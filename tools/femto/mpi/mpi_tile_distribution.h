@@ -12,10 +12,13 @@
 // process would.
 //
 // Messages (MPI_COMM_WORLD, only the main thread of each rank calls MPI):
-//   worker -> 0  Request   one uint64: how many more tiles it wants
+//   worker -> 0  Request   one uint64: how many more tiles it wants (when it
+//                          has no finished tile to send the request with)
 //   0 -> worker  Assign    uint64 tile indices, in order; none: no more
-//   worker -> 0  TileData  a header (index, samples, invalid), then the packed
-//                          sums unless the worker stored the tile itself
+//   worker -> 0  TileData  how many more tiles it wants (0: none), then a
+//                          header (index, samples, invalid) per finished tile,
+//                          then the packed sums of the one tile unless the
+//                          worker stored its tiles itself
 // and at the end of each stream a broadcast of the job's statistics, so every
 // rank stops (a cancel) or goes on to the next pass together.
 #include <mpi.h>
