@@ -118,10 +118,11 @@ ratio() {
 }
 # rank0 NAME: rank 0's coordination per tile and the image bytes exchanged per pass (first pass).
 rank0() {
-  us=$(sed -n 's/.*rank 0 spent \([0-9.e+-]*\) us of CPU per tile.*/\1/p' "$work/${1}2.log" | awk '{ s += $1; n++ } END { if (n) printf "%.1f", s / n }')
+  us=$(sed -n 's/.*rank 0 spent \([0-9.e+-]*\) us of CPU per tile of theirs.*/\1/p' "$work/${1}2.log" | awk '{ s += $1; n++ } END { if (n) printf "%.1f", s / n }')
   bytes=$(sed -n 's/.*stored image pixels (\([0-9]*\) bytes).*/\1/p' "$work/${1}2.log" | head -n 1)
   tiles=$(sed -n 's/.*tiles rendered by ranks 0 to 1: \([0-9]*\) \([0-9]*\);.*/\1 + \2/p' "$work/${1}2.log" | head -n 1)
-  echo "$us us of CPU per tile ($tiles tiles a pass); $bytes B of images a pass"
+  msg=$(sed -n 's/.*messages, \([0-9.e+-]*\) us each.*/\1/p' "$work/${1}2.log" | awk '{ s += $1; n++ } END { if (n) printf "%.1f", s / n }')
+  echo "$us us of CPU per tile of rank 1, $msg us per message ($tiles tiles a pass); $bytes B of images a pass"
 }
 out=docs/BENCHMARKS.md
 {

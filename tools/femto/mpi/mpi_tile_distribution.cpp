@@ -129,6 +129,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   std::vector<size_t> perRank(size_t(size_), 0);  // tiles handed to each rank, for the log
   uint64_t bytesReceived = 0, tilesReceived = 0;
   double coordinationSeconds = 0.0;  // CPU answering requests and taking tiles in
+  uint64_t messages = 0;             // requests and tile messages received
   LocalTiles local(job);
   bool localOpen = true;
   auto feedLocal = [&] {
@@ -166,7 +167,7 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &flag, &status), "probe");
     if (flag) {
-      busy = true;
+      busy = true, ++messages;
       // What rank 0 does for the others, serially: the scaling model's
       // per-tile cost (docs/BENCHMARKS.md, "Strong scaling"), in this
       // thread's CPU time (its wall time would count the render threads
@@ -234,7 +235,9 @@ RenderStats MpiTileDistribution::coordinate(TileJob& job) {
   logDebug("tiles rendered by ranks 0 to ", size_ - 1, ":", counts, "; received ", tilesReceived, " tiles, ",
            bytesReceived, " bytes (", tilesReceived ? bytesReceived / tilesReceived : 0, " per tile)",
            job.consumeWhereRendered ? "; each rank stored its own tiles" : "", "; rank 0 spent ",
-           coordinationSeconds * 1e6 / double(std::max<size_t>(next, 1)), " us of CPU per tile on the others' requests and tiles");
+           coordinationSeconds * 1e6 / double(std::max<uint64_t>(tilesReceived, 1)),
+           " us of CPU per tile of theirs on the other ranks' requests and tiles (", messages, " messages, ",
+           coordinationSeconds * 1e6 / double(std::max<uint64_t>(messages, 1)), " us each)");
   return stats;
 }
 
@@ -242,14 +245,13 @@ void MpiTileDistribution::work(TileJob& job) {
   LocalTiles local(job);
   bool asking = false, open = true;
   std::vector<float> buffer;
-  while (open || !local.done()) {
+  std::vector<RenderTile*> unsent;  // finished, not yet reported to rank 0
+  // Tiles stored here are reported, and more asked for, in batches of half
+  // the tiles kept assigned (rank 0's work is then per batch, not per tile);
+  // tiles whose sums travel go one by one, at once.
+  const size_t batch = job.consumeWhereRendered ? std::max<size_t>(1, local.wanted() / 2) : 1;
+  while (open || !local.done() || !unsent.empty()) {
     bool busy = false;
-    // One request in flight at a time, for what the threads here lack.
-    if (open && !asking && local.pending() < local.wanted()) {
-      uint64_t count = local.wanted() - local.pending();
-      check(MPI_Send(&count, 1, MPI_UINT64_T, 0, Request, comm_), "send");
-      asking = true;
-    }
     int flag = 0;
     MPI_Status status;
     check(MPI_Iprobe(0, Assign, comm_, &flag, &status), "probe");
@@ -262,23 +264,29 @@ void MpiTileDistribution::work(TileJob& job) {
       if (ids.empty()) local.close(), open = false;
       for (uint64_t id : ids) local.assign(&job.tiles.at(id));
     }
-    // Finished tiles go back with the next request riding along (one
-    // message for every tile stored here; one per tile whose sums travel).
-    std::vector<RenderTile*> finished = local.takeFinished();
-    for (size_t first = 0; first < finished.size();) {
-      busy = true;
-      const size_t count = job.consumeWhereRendered ? finished.size() - first : 1;
+    for (RenderTile* tile : local.takeFinished()) unsent.push_back(tile), busy = true;
+    // One request in flight at a time, for what the threads here lack.
+    const bool lacking = open && !asking && local.pending() + batch <= local.wanted();
+    const bool report = !unsent.empty() && (unsent.size() >= batch || lacking || !open || local.pending() == 0);
+    if (!report && lacking) {
+      uint64_t count = local.wanted() - local.pending();
+      check(MPI_Send(&count, 1, MPI_UINT64_T, 0, Request, comm_), "send");
+      asking = true;
+    }
+    // The finished tiles, with the request riding along on the first message.
+    for (size_t first = 0; report && first < unsent.size();) {
+      const size_t count = job.consumeWhereRendered ? unsent.size() - first : 1;
       MessageHead head{0, count};
-      if (open && !asking && local.pending() < local.wanted()) head.more = local.wanted() - local.pending(), asking = true;
+      if (first == 0 && lacking) head.more = local.wanted() - local.pending(), asking = true;
       std::vector<char> bytes(sizeof(head));
       std::memcpy(bytes.data(), &head, sizeof(head));
       for (size_t k = first; k < first + count; ++k) {
-        const TileHeader header{finished[k]->index, finished[k]->samples, finished[k]->invalid};
+        const TileHeader header{unsent[k]->index, unsent[k]->samples, unsent[k]->invalid};
         const char* p = reinterpret_cast<const char*>(&header);
         bytes.insert(bytes.end(), p, p + sizeof(header));
       }
       buffer.clear();
-      RenderTile& tile = *finished[first];
+      RenderTile& tile = *unsent[first];
       if (tile.accumulator) tile.accumulator->pack(buffer);  // else stored where rendered
       tile.accumulator.reset();
       buffer.insert(buffer.begin(), bytes.size() / sizeof(float), 0.0f);
@@ -288,6 +296,7 @@ void MpiTileDistribution::work(TileJob& job) {
       waitSleeping(request);  // until rank 0 takes it (it may be folding tiles)
       first += count;
     }
+    if (report) unsent.clear();
     if (!busy) local.waitForFinished(PollInterval);
   }
 }
