@@ -60,6 +60,15 @@ same() {
   cmp -s "$work/${1}1.npy" "$work/${1}2.npy" || { echo "$1: 2 ranks wrote other bits than 1 process" >&2; exit 1; }
   rm -f "$work/${1}1.npy" "$work/${1}2.npy"
 }
+# pair CASE: the render $CASE on one process, then on 2 ranks, compared.
+pair() {
+  eval "args=\$$1"
+  # shellcheck disable=SC2086
+  run "${1}1" 0 $args
+  # shellcheck disable=SC2086
+  run "${1}2" 2 $args
+  same "$1"
+}
 median() { cut -d' ' -f"$2" "$1" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 runs_of() { cut -d' ' -f"$2" "$1" | tr '\n' ' ' | sed 's/ $//'; }
 
@@ -72,14 +81,8 @@ fold_args="-D integrator=transient_beams -D resolution=64 -D bins=4096 -D bin_wi
 start_args="-D resolution=8 -D bins=16 -D bin_width=0.64 -D spp=1"
 i=0
 while [ "$i" -lt "$runs" ]; do
-  for case in path_small beams_small; do
-    eval "args=\$$case"
-    # shellcheck disable=SC2086
-    run "${case}1" 0 $args
-    # shellcheck disable=SC2086
-    run "${case}2" 2 $args
-    same "$case"
-  done
+  pair path_small
+  pair beams_small
   # shellcheck disable=SC2086
   both path_small_both $path_small
   # shellcheck disable=SC2086
@@ -94,14 +97,8 @@ while [ "$i" -lt "$runs" ]; do
 done
 i=0
 while [ "$i" -lt "$large_runs" ]; do
-  for case in path_large beams_large; do
-    eval "args=\$$case"
-    # shellcheck disable=SC2086
-    run "${case}1" 0 $args
-    # shellcheck disable=SC2086
-    run "${case}2" 2 $args
-    same "$case"
-  done
+  pair path_large
+  pair beams_large
   i=$((i + 1))
 done
 # The disk the volumes go to: 2 GB written and flushed (a 512x512 x 4096 volume is 12.9 GB,

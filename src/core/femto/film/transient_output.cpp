@@ -9,9 +9,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
-#include <cstdio>
 #include <string>
 #include <system_error>
 #include <vector>
