@@ -1,6 +1,10 @@
 // Resource checks refuse what cannot fit, naming the sizes, and pass what can.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <optional>
+#include <string>
+
 #include <femto/base/error.h>
 #include <femto/core/resources.h>
 
@@ -11,6 +15,30 @@ TEST(Resources, FormatsBytesInBinaryUnits) {
   EXPECT_EQ(formatBytes(100), "100 B");
   EXPECT_EQ(formatBytes(1536), "1.5 KiB");
   EXPECT_EQ(formatBytes(3.0 * (1ull << 30)), "3.0 GiB");
+}
+
+/// A number in a file (nullopt: absent or not a number, as cgroup's "max").
+std::optional<uint64_t> numberIn(const char* path) {
+  std::ifstream in(path);
+  uint64_t value = 0;
+  if (in >> value) return value;
+  return std::nullopt;
+}
+
+TEST(Resources, AvailableMemoryStaysWithinTheMachinesAndTheCgroupsLimits) {
+  std::optional<uint64_t> available = availableMemoryBytes();
+  ASSERT_TRUE(available.has_value());
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  uint64_t kib = 0, memAvailable = 0;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") memAvailable = kib * 1024;
+  // Both read at slightly different moments: allow for the memory that moved in between.
+  const uint64_t slack = uint64_t(64) << 20;
+  EXPECT_LE(*available, memAvailable + slack);
+  const std::optional<uint64_t> limit = numberIn("/sys/fs/cgroup/memory.max"),
+                                usage = numberIn("/sys/fs/cgroup/memory.current");
+  if (limit && usage) EXPECT_LE(*available, (*limit > *usage ? *limit - *usage : 0) + slack);
 }
 
 TEST(Resources, MemoryBeyondWhatIsAvailableIsRefusedWithItsSize) {

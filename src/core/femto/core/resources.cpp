@@ -7,8 +7,10 @@
 #include <cerrno>
 #include <cstring>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 #include <sstream>
 
 #include <femto/base/error.h>
@@ -25,14 +27,40 @@ std::string formatBytes(double bytes) {
   return text;
 }
 
+namespace {
+
+/// A number read from a cgroup file ("max" or absent: nullopt).
+std::optional<uint64_t> cgroupNumber(const char* path) {
+  std::ifstream in(path);
+  uint64_t value = 0;
+  if (in >> value) return value;
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<uint64_t> availableMemoryBytes() {
+  std::optional<uint64_t> available;
   std::ifstream meminfo("/proc/meminfo");
   std::string key;
   uint64_t kib = 0;
   std::string unit;
   while (meminfo >> key >> kib >> unit)
-    if (key == "MemAvailable:") return kib * 1024;
-  return std::nullopt;
+    if (key == "MemAvailable:") {
+      available = kib * 1024;
+      break;
+    }
+  // A container's limit (cgroup v2, then v1) may be far below the machine's.
+  for (auto [limitFile, usageFile] : {std::pair{"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"},
+                                      std::pair{"/sys/fs/cgroup/memory/memory.limit_in_bytes",
+                                                "/sys/fs/cgroup/memory/memory.usage_in_bytes"}}) {
+    const std::optional<uint64_t> limit = cgroupNumber(limitFile), usage = cgroupNumber(usageFile);
+    if (!limit || !usage) continue;
+    const uint64_t left = *limit > *usage ? *limit - *usage : 0;
+    available = available ? std::min(*available, left) : left;
+    break;
+  }
+  return available;
 }
 
 std::optional<uint64_t> freeDiskBytes(const std::filesystem::path& path) {

@@ -13,7 +13,8 @@ namespace femto {
 std::string formatBytes(double bytes);
 
 /// Memory the system can still give this process (MemAvailable of
-/// /proc/meminfo); nullopt where unknown.
+/// /proc/meminfo, or less: what is left under the process's cgroup limit);
+/// nullopt where unknown.
 std::optional<uint64_t> availableMemoryBytes();
 
 /// Free space for an unprivileged writer on the file system holding `path`
