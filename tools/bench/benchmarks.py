@@ -31,6 +31,7 @@ SECTIONS_DIR = os.path.join(ROOT, "docs", "benchmarks", "sections")
 SECTIONS = [
     ("ray-casting", "tools/bench/run_ray_bench.sh"),
     ("mpi-scaling", "tools/bench/run_mpi_bench.sh"),
+    ("tile-heap", "tools/bench/tile_heap.sh"),
     ("many-scenes", "tools/bench/many_scenes.py"),
     ("transient-path", "tools/bench/run_transient_bench.sh"),
     ("path-sampling", "tools/bench/path_sampling_bench.py --seeds 3"),
