@@ -110,8 +110,8 @@ load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 # ratio NAME FIELD: by wall time (field 2) T(1) / (2 T(2)); by CPU time (field 1,
 # already summed over the ranks) CPU(1) / CPU(2).
 ratio() {
-  awk -v a="$(median "$work/${1}1" "$2")" -v b="$(median "$work/${1}2" "$2")" -v k="$((3 - $2))" \
-    'BEGIN { printf "%.2f", a / ((k == 1 ? 2 : 1) * b) }'
+  awk -v a="$(median "$work/${1}1" "$2")" -v b="$(median "$work/${1}2" "$2")" -v field="$2" \
+    'BEGIN { printf "%.2f", a / ((field == 2 ? 2 : 1) * b) }'
 }
 # rank0 NAME: rank 0's coordination per tile and the image bytes exchanged per pass (first pass).
 rank0() {

@@ -1,7 +1,7 @@
 #pragma once
 // The files of one transient render, written as the render goes: finished
-// tiles (in tile order) go straight into the .npy volume at their offsets and
-// are then freed; the steady, before and after images (one RGB value per
+// tiles go straight into the .npy volume at their offsets (in parallel, or
+// in tile order when a filter's borders must be summed) and are then freed; the steady, before and after images (one RGB value per
 // pixel, small) are kept and written at the end, followed by one EXR frame per
 // time bin read back from the volume a batch of frames at a time. Memory stays
 // bounded by the tiles in flight plus a fixed frame budget, whatever the

@@ -41,7 +41,8 @@ class TileAccumulator {
 /// Creates the accumulator of the tile at `offset` (film pixels) of `size`.
 using TileFactory = std::function<std::unique_ptr<TileAccumulator>(const Point2i& offset, const Point2i& size)>;
 /// Receives each finished tile, one at a time, in tile order (row-major over
-/// the crop window); the accumulator is destroyed right after.
+/// the crop window), or, for renderTileStream's consumeWhereRendered, on the
+/// thread that rendered it; the accumulator is destroyed right after.
 using TileConsumer = std::function<void(TileAccumulator& tile)>;
 
 /// Side length of the square tiles (pixels), unless their memory needs less.

@@ -5,7 +5,8 @@
 // renderTileStream hands it the job. Determinism across processes needs
 // nothing new: each pixel seeds its sampler from (seed, pixel index), so a
 // tile's values do not depend on where it was rendered, and the consuming
-// process still folds every tile in tile order.
+// process still folds every tile in tile order (or, for tiles stored alone,
+// TileJob::consumeWhereRendered, each process stores those it rendered).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
