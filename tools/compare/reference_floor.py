@@ -33,17 +33,20 @@ def weights(ref):
     return 1.0 / (ref**2 + media_suite.EPSILON * ref.mean() ** 2)
 
 
-def split(volumes, ref):
+def split(volumes, ref, w=None, keep=None):
     """(one render's variance, relMSE of the renders' mean, floor) and the
-    per-voxel floor and variance maps behind them."""
-    w = weights(ref)
+    per-voxel floor and variance maps behind them. `w`: relMSE's weights
+    (default weights(ref)); `keep`: a mask of the cells scored (default all)."""
+    w = weights(ref) if w is None else w
     n = len(volumes)
     mean = sum(volumes) / n
     pair_maps = [(volumes[i] - volumes[j]) ** 2 * w / 2.0 for i in range(n) for j in range(i + 1, n)]
     variance_map = sum(pair_maps) / len(pair_maps)
     error_map = (mean - ref) ** 2 * w
     floor_map = error_map - variance_map / n
-    return float(variance_map.mean()), float(error_map.mean()), float(floor_map.mean()), floor_map, variance_map
+    scored = (lambda m: m) if keep is None else (lambda m: m[keep])
+    return (float(scored(variance_map).mean()), float(scored(error_map).mean()), float(scored(floor_map).mean()),
+            floor_map, variance_map)
 
 
 def block_means(voxel_map, blocks=16):
