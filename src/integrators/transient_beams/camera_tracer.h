@@ -141,7 +141,10 @@ class CameraTracer {
   };
   WindowGate windowGate(const Scene& scene, RadianceRecorder& recorder, Sampler& sampler) const;
   // The estimates along the way.
-  void gatherBeams(const Scene& scene, const Path& path, float tMax, Sampler& sampler, RadianceRecorder& recorder);
+  /// The beams along the current segment: from the path's vertex, `tMax`
+  /// along its ray, or to `end` (the surface point the segment ends on) when given.
+  void gatherBeams(const Scene& scene, const Path& path, float tMax, const Point3f* end, Sampler& sampler,
+                   RadianceRecorder& recorder);
   void nextEvent(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                  RadianceRecorder& recorder);
   void gatherSurfacePhotons(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
