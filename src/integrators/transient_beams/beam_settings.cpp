@@ -67,6 +67,7 @@ BeamSettings BeamSettings::parse(const Properties& props) {
   s.observerTime = props.getBool("observer_time", true);
   s.hideEmitters = props.getBool("hide_emitters", false);
   s.timeSplitting = props.getBool("time_splitting", true);
+  s.stratifiedPhotons = props.getBool("stratified_photons", true);
   s.timeGating = props.getBool("time_gating", true);
   s.beforeWindowRate = props.getFloat("before_window_rate", s.beforeWindowRate, Range::closed(0, 1),
                                       "the share of estimates landing wholly before the window that are made");

@@ -113,6 +113,9 @@ struct BeamSettings : PathDepthSettings {
   /// profile (time_levels.h) from pass 1 on, read by a pilot of pass 0's
   /// camera samples (transient_beams.cpp); `timeLevels` holds it then.
   bool timeSplitting = true;
+  /// Photons leave the emitters along Owen-scrambled (0,2)-sequences
+  /// (photon_tracer.h, stratifiedEmission) rather than independent draws.
+  bool stratifiedPhotons = true;
   /// time_gating: the camera side skips what lands wholly before the film's
   /// window but a before_window_rate share of it, weighted by its inverse
   /// (camera_tracer.h, WindowGate; the map skips such beam pieces).

@@ -23,6 +23,7 @@
 #include <transient_beams/beam_roulette.h>
 #include <transient_beams/boundary_extension.h>
 #include <transient_beams/medium_extent.h>
+#include <femto/transport/sample_sequences.h>
 
 namespace femto::beams {
 namespace {
@@ -33,6 +34,8 @@ constexpr int MaxPhotonDepth = 32767;
 static_assert(sizeof(Beam) <= 88, "a beam should stay under two cache lines");
 /// Photons per parallel work item: outputs are concatenated in item order.
 constexpr uint64_t PhotonsPerBlock = 1024;
+/// Mixed into a pass's photon seed for the scrambles of stratifiedEmission.
+constexpr uint64_t StratifiedEmissionSalt = 0x7374726174ull;  // "strat"
 
 /// The random numbers of one photon: a PCG32 stream restarted per photon
 /// from (pass seed, photon index), so the photon is the same on any thread.
@@ -136,7 +139,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   Sampler& sampler = *sampler_;
   sampler.startPixel(seed, index);
   Photon ph;
-  if (!emit(ph, sampler)) return;
+  if (!emit(ph, sampler, seed, index)) return;
   pending_.clear();
   follow(ph, sampler, beams, photons, storeBeams);
   // Copies split off on the way (time_splitting), each from where it split,
@@ -186,12 +189,35 @@ void PhotonTracer::follow(Photon& ph, Sampler& sampler, std::vector<Beam>& beams
   }
 }
 
-bool PhotonTracer::emit(Photon& ph, Sampler& sampler) const {
+EmissionSample stratifiedEmission(uint64_t seed, uint64_t index) {
+  using namespace sequence;
+  const uint32_t i = uint32_t(index);  // past 2^32 photons a pass the points repeat, each still uniform
+  const uint64_t key = mixSeed(seed, StratifiedEmissionSalt);
+  auto net = [&](uint64_t salt) {
+    return Point2f(toUnitFloat(owenScramble(vanDerCorput(i), mixSeed(key, salt))),
+                   toUnitFloat(owenScramble(sobol2(i), mixSeed(key, salt + 1))));
+  };
+  EmissionSample e;
+  e.pick = toUnitFloat(owenScramble(vanDerCorput(i), mixSeed(key, 0)));
+  e.position = net(1);
+  e.direction = net(3);
+  return e;
+}
+
+bool PhotonTracer::emit(Photon& ph, Sampler& sampler, uint64_t seed, uint64_t index) const {
+  EmissionSample u;
+  if (settings_.stratifiedPhotons)
+    u = stratifiedEmission(seed, index);
+  else {
+    u.pick = sampler.next1D();
+    u.position = sampler.next2D();
+    u.direction = sampler.next2D();
+  }
   float pick = 0.0f;
-  const size_t emitterIndex = emitterPower_.sampleDiscrete(sampler.next1D(), &pick);
+  const size_t emitterIndex = emitterPower_.sampleDiscrete(u.pick, &pick);
   const Emitter& emitter = *scene_.emitters()[emitterIndex];
   ph.emitter = uint16_t(emitterIndex);
-  Point2f uPosition = sampler.next2D(), uDirection = sampler.next2D();
+  const Point2f uPosition = u.position, uDirection = u.direction;
   ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
   // Emitted at OPL 0: the camera side reports every contribution with the
   // pulse of the emitter the photon names, and the film convolves exactly.

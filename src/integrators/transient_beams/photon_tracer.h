@@ -30,6 +30,13 @@
 //   power, each sampling its own direction, so late light gets as many
 //   beams as early light. Unbiased for any levels.
 //
+// * stratified_photons: photon i's emitter, position and direction are
+//   point i of Owen-scrambled (0,2)-sequences keyed by the pass
+//   (stratifiedEmission), so a pass's photons, and the first
+//   beam_photon_count of them, leave the emitters evenly (randomised
+//   quasi-Monte Carlo; Owen 1995). Each photon's numbers are uniform and
+//   independent, so the pass stays unbiased, and passes stay independent.
+//
 // Determinism: photon i of a pass draws its random numbers from its own
 // stream, seeded by (pass seed, i), and the pass concatenates per-block
 // outputs in photon order, so the maps do not depend on the thread count.
@@ -52,6 +59,20 @@ struct SurfaceInteraction;
 }  // namespace femto
 
 namespace femto::beams {
+
+/// The numbers a photon leaves its emitter with: which emitter, where on it, which way.
+struct EmissionSample {
+  float pick = 0.0f;
+  Point2f position, direction;
+};
+/// Photon `index` of the pass seeded by `seed` under stratified_photons:
+/// the pick is the Owen-scrambled van der Corput point i, the position and
+/// the direction each an Owen-scrambled (0,2)-sequence point i (van der
+/// Corput and Sobol's second dimension, transport/sample_sequences.h), every
+/// coordinate with its own scramble drawn from the seed. Any prefix of the
+/// photons is spread evenly; each photon's five numbers are uniform and
+/// independent (a fixed point under a random nested scramble is uniform).
+EmissionSample stratifiedEmission(uint64_t seed, uint64_t index);
 
 /// What one photon pass produced. Powers are per traced photon: estimates
 /// divide by photonCount.
@@ -84,7 +105,9 @@ class PhotonTracer {
               bool storeBeams);
   // The steps of trace(), in the photon's order; each false ends the photon.
   /// Pick an emitter (by power) and sample the photon's first ray.
-  bool emit(Photon& photon, Sampler& sampler) const;
+  /// Photon `index` of the pass seeded by `seed` leaves an emitter
+  /// (stratifiedEmission, or three draws of `sampler`).
+  bool emit(Photon& photon, Sampler& sampler, uint64_t seed, uint64_t index) const;
   /// The segment through the photon's medium, up to `si` when `hit`: leaves
   /// its beam (when `store`), samples a free flight and weights the power by
   /// it (`arriving`: the power before). Returns the free flight.
