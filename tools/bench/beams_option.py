@@ -1,17 +1,19 @@
 #!/usr/bin/python3
-"""transient_beams' time_splitting (photons rouletted and split against the
-film's time profile from pass 1 on) against the roulette on power alone
-(time_splitting=false), paired on the media suite's scenes at the suite's
-beams budgets: seeds 1..--seeds, CPU the median, relMSE (eps 0.01 x mean^2)
-the mean over seeds against the suite's references (independent of both
-renders; their own error subtracted). Prints the "beams-time-splitting"
-section of docs/BENCHMARKS.md:
+"""One of transient_beams' boolean options on and off, paired on the media
+suite's scenes at the suite's beams budgets: seeds 1..--seeds, CPU the
+median, relMSE (eps 0.01 x mean^2) the mean over seeds against the suite's
+references (independent of both renders; their own error subtracted).
+Prints a section of docs/BENCHMARKS.md:
 
-  tools/bench/beams_time_splitting.py [--seeds 3] [--only NAME] | tools/bench/benchmarks.py set beams-time-splitting
+  tools/bench/beams_option.py --option time_splitting | tools/bench/benchmarks.py set beams-time-splitting
+  tools/bench/beams_option.py --option stratified_photons | tools/bench/benchmarks.py set beams-stratified-photons
 
-References are the media suite's, cached under BUILD/media-suite (made on
-first use, as tools/bench/media_suite.py makes them). The steady lajolla box
-is left out by default (one bin: nothing to split; --only lajolla runs it).
+time_splitting: photons rouletted and split against the film's time profile
+from pass 1 on, against the roulette on power alone. stratified_photons:
+photons leave the emitters along scrambled (0,2)-sequences, against
+independent draws. References are the media suite's, cached under
+BUILD/media-suite (made on first use, as tools/bench/media_suite.py makes
+them). The steady lajolla box is left out by default (--only lajolla runs it).
 """
 import argparse
 import contextlib
@@ -26,9 +28,16 @@ import provenance  # noqa: E402
 from media_suite import ROOT, cached_path_reference, cases, relmse, render, tof_reference  # noqa: E402
 
 
+TITLES = {
+    "time_splitting": "Splitting photons against time: transient_beams' time_splitting on and off",
+    "stratified_photons": "Stratified photon emission: transient_beams' stratified_photons on and off",
+}
+
+
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--femto", default=os.path.join(ROOT, "build", "bin", "femto"))
+    p.add_argument("--option", default="time_splitting", choices=sorted(TITLES))
     p.add_argument("--seeds", type=int, default=3)
     p.add_argument("--only", default="", help="run only the scenes whose name contains this")
     args = p.parse_args(argv)
@@ -45,8 +54,8 @@ def main(argv):
         result = {}
         for seed in range(1, args.seeds + 1):
             for on in ("false", "true"):
-                d = dict(case["defines"], integrator="transient_beams", time_splitting=on, **case["beams"])
-                npy, cpu, _, _ = render(args.femto, case["scene"], os.path.join(out, "split-run.exr"), d, seed)
+                d = dict(case["defines"], integrator="transient_beams", **{args.option: on}, **case["beams"])
+                npy, cpu, _, _ = render(args.femto, case["scene"], os.path.join(out, "option-run.exr"), d, seed)
                 x = np.load(npy).astype(np.float64)
                 result.setdefault(on, []).append((cpu, relmse(x.reshape(ref.shape), ref) - own))
         (c0, e0), (c1, e1) = [(statistics.median(c for c, _ in result[on]), float(np.mean([e for _, e in result[on]])))
@@ -54,8 +63,7 @@ def main(argv):
         rows.append((case["name"], case["beams"], c0, e0, c1, e1))
         print(f"  {case['name']}: off {c0:.2f} s {e0:.4g}, on {c1:.2f} s {e1:.4g}: {c0 * e0 / (c1 * e1):.2f}x",
               file=sys.stderr, flush=True)
-    provenance.header("Splitting photons against time: transient_beams' time_splitting on and off",
-                      "tools/bench/beams_time_splitting.py", "tools/bench/beams_time_splitting.py " + " ".join(argv),
+    provenance.header(TITLES[args.option], "tools/bench/beams_option.py", "tools/bench/beams_option.py " + " ".join(argv),
                       notes=[f"the media suite's scenes and beams budgets, on and off, seeds 1-{args.seeds}; CPU "
                              f"(user + system of the femto process, 2 threads) the median, relMSE the mean over "
                              f"seeds, the reference's own relMSE subtracted"])
