@@ -113,7 +113,7 @@ struct BeamSettings : PathDepthSettings {
   /// profile (time_levels.h) from pass 1 on, read by a pilot of pass 0's
   /// camera samples (transient_beams.cpp); `timeLevels` holds it then.
   bool timeSplitting = true;
-  /// Photons leave the emitters along Owen-scrambled (0,2)-sequences
+  /// Photons leave the emitters along an Owen-scrambled Sobol sequence
   /// (photon_tracer.h, stratifiedEmission) rather than independent draws.
   bool stratifiedPhotons = true;
   /// time_gating: the camera side skips what lands wholly before the film's

@@ -19,11 +19,11 @@
 #include <femto/render/sensor.h>
 #include <femto/render/shape.h>
 #include <femto/transport/optical_path.h>
+#include <femto/transport/sample_sequences.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/beam_roulette.h>
 #include <transient_beams/boundary_extension.h>
 #include <transient_beams/medium_extent.h>
-#include <femto/transport/sample_sequences.h>
 
 namespace femto::beams {
 namespace {
@@ -193,14 +193,11 @@ EmissionSample stratifiedEmission(uint64_t seed, uint64_t index) {
   using namespace sequence;
   const uint32_t i = uint32_t(index);  // past 2^32 photons a pass the points repeat, each still uniform
   const uint64_t key = mixSeed(seed, StratifiedEmissionSalt);
-  auto net = [&](uint64_t salt) {
-    return Point2f(toUnitFloat(owenScramble(vanDerCorput(i), mixSeed(key, salt))),
-                   toUnitFloat(owenScramble(sobol2(i), mixSeed(key, salt + 1))));
-  };
+  auto coordinate = [&](int d) { return toUnitFloat(owenScramble(sobol(d, i), mixSeed(key, uint64_t(d)))); };
   EmissionSample e;
-  e.pick = toUnitFloat(owenScramble(vanDerCorput(i), mixSeed(key, 0)));
-  e.position = net(1);
-  e.direction = net(3);
+  e.direction = Point2f(coordinate(0), coordinate(1));  // the (0,2)-sequence: directions matter most
+  e.position = Point2f(coordinate(2), coordinate(3));
+  e.pick = coordinate(4);
   return e;
 }
 

@@ -31,7 +31,7 @@
 //   beams as early light. Unbiased for any levels.
 //
 // * stratified_photons: photon i's emitter, position and direction are
-//   point i of Owen-scrambled (0,2)-sequences keyed by the pass
+//   point i of an Owen-scrambled Sobol sequence keyed by the pass
 //   (stratifiedEmission), so a pass's photons, and the first
 //   beam_photon_count of them, leave the emitters evenly (randomised
 //   quasi-Monte Carlo; Owen 1995). Each photon's numbers are uniform and
@@ -66,12 +66,12 @@ struct EmissionSample {
   Point2f position, direction;
 };
 /// Photon `index` of the pass seeded by `seed` under stratified_photons:
-/// the pick is the Owen-scrambled van der Corput point i, the position and
-/// the direction each an Owen-scrambled (0,2)-sequence point i (van der
-/// Corput and Sobol's second dimension, transport/sample_sequences.h), every
-/// coordinate with its own scramble drawn from the seed. Any prefix of the
-/// photons is spread evenly; each photon's five numbers are uniform and
-/// independent (a fixed point under a random nested scramble is uniform).
+/// point i of the first five Sobol dimensions (transport/sample_sequences.h),
+/// every coordinate Owen-scrambled with its own key drawn from the seed: the
+/// direction from dimensions 0 and 1 (a (0,2)-sequence), the position from
+/// 2 and 3, the pick from 4. Any prefix of the photons is spread evenly;
+/// each photon's five numbers are uniform and independent (a fixed point
+/// under a random nested scramble is uniform).
 EmissionSample stratifiedEmission(uint64_t seed, uint64_t index);
 
 /// What one photon pass produced. Powers are per traced photon: estimates
