@@ -44,7 +44,7 @@ SECTIONS = [
     ("mitransient-peer", "tools/bench/mitransient_peer.py"),
     ("time-splitting", "tools/bench/time_splitting.py"),
     ("beams-time-splitting", "tools/bench/beams_option.py --option time_splitting --seeds 3"),
-    ("beams-stratified-photons", "tools/bench/beams_option.py --option stratified_photons --seeds 3"),
+    ("beams-stratified-photons", "tools/bench/beams_option.py --option stratified_photons --seeds 6"),
     ("time-gating", "tools/bench/time_gating.py"),
     ("beams-pass-split", "tools/bench/beams_pass_split.py --resolution 64 --seeds 2"),
     ("beams-peer", "tools/compare/tof_peer.py --passes 4,16,64 --seeds 2"),
