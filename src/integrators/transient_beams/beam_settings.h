@@ -113,8 +113,8 @@ struct BeamSettings : PathDepthSettings {
   /// profile (time_levels.h) from pass 1 on, read by a pilot of pass 0's
   /// camera samples (transient_beams.cpp); `timeLevels` holds it then.
   bool timeSplitting = true;
-  /// Photons leave the emitters along an Owen-scrambled Sobol sequence
-  /// (photon_tracer.h, stratifiedEmission) rather than independent draws.
+  /// The directions photons leave the emitters in are stratified over a
+  /// pass (photon_tracer.h, stratifiedDirection) rather than independent.
   bool stratifiedPhotons = true;
   /// time_gating: the camera side skips what lands wholly before the film's
   /// window but a before_window_rate share of it, weighted by its inverse

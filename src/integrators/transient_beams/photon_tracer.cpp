@@ -19,7 +19,6 @@
 #include <femto/render/sensor.h>
 #include <femto/render/shape.h>
 #include <femto/transport/optical_path.h>
-#include <femto/transport/sample_sequences.h>
 #include <femto/transport/volumetric.h>
 #include <transient_beams/beam_roulette.h>
 #include <transient_beams/boundary_extension.h>
@@ -34,8 +33,6 @@ constexpr int MaxPhotonDepth = 32767;
 static_assert(sizeof(Beam) <= 88, "a beam should stay under two cache lines");
 /// Photons per parallel work item: outputs are concatenated in item order.
 constexpr uint64_t PhotonsPerBlock = 1024;
-/// Mixed into a pass's photon seed for the scrambles of stratifiedEmission.
-constexpr uint64_t StratifiedEmissionSalt = 0x7374726174ull;  // "strat"
 
 /// The random numbers of one photon: a PCG32 stream restarted per photon
 /// from (pass seed, photon index), so the photon is the same on any thread.
@@ -139,7 +136,7 @@ void PhotonTracer::trace(uint64_t seed, uint64_t index, std::vector<Beam>& beams
   Sampler& sampler = *sampler_;
   sampler.startPixel(seed, index);
   Photon ph;
-  if (!emit(ph, sampler, seed, index)) return;
+  if (!emit(ph, sampler, index)) return;
   pending_.clear();
   follow(ph, sampler, beams, photons, storeBeams);
   // Copies split off on the way (time_splitting), each from where it split,
@@ -189,32 +186,28 @@ void PhotonTracer::follow(Photon& ph, Sampler& sampler, std::vector<Beam>& beams
   }
 }
 
-EmissionSample stratifiedEmission(uint64_t seed, uint64_t index) {
-  using namespace sequence;
-  const uint32_t i = uint32_t(index);  // past 2^32 photons a pass the points repeat, each still uniform
-  const uint64_t key = mixSeed(seed, StratifiedEmissionSalt);
-  auto coordinate = [&](int d) { return toUnitFloat(owenScramble(sobol(d, i), mixSeed(key, uint64_t(d)))); };
-  EmissionSample e;
-  e.direction = Point2f(coordinate(0), coordinate(1));  // the (0,2)-sequence: directions matter most
-  e.position = Point2f(coordinate(2), coordinate(3));
-  e.pick = coordinate(4);
-  return e;
+Point2f stratifiedDirection(uint64_t index, uint64_t beamPhotons, uint64_t photons, const Point2f& jitter) {
+  // The beam photons [0, beamPhotons) and the rest are stratified apart:
+  // each group's estimates then sum one photon per stratum.
+  const bool beams = index < beamPhotons;
+  const uint64_t group = beams ? beamPhotons : (photons > beamPhotons ? photons - beamPhotons : 0);
+  const uint64_t j = beams ? index : index - beamPhotons;
+  const uint64_t k = uint64_t(std::sqrt(double(group)));  // k x k strata
+  if (k == 0 || j >= k * k) return jitter;               // the group's last photons: not stratified
+  return Point2f((float(j % k) + jitter.x) / float(k), (float(j / k) + jitter.y) / float(k));
 }
 
-bool PhotonTracer::emit(Photon& ph, Sampler& sampler, uint64_t seed, uint64_t index) const {
-  EmissionSample u;
+bool PhotonTracer::emit(Photon& ph, Sampler& sampler, uint64_t index) const {
+  const float uPick = sampler.next1D();
+  const Point2f uPosition = sampler.next2D();
+  Point2f uDirection = sampler.next2D();
   if (settings_.stratifiedPhotons)
-    u = stratifiedEmission(seed, index);
-  else {
-    u.pick = sampler.next1D();
-    u.position = sampler.next2D();
-    u.direction = sampler.next2D();
-  }
+    uDirection = stratifiedDirection(index, uint64_t(settings_.beamPhotons()), uint64_t(settings_.photonCount),
+                                     uDirection);
   float pick = 0.0f;
-  const size_t emitterIndex = emitterPower_.sampleDiscrete(u.pick, &pick);
+  const size_t emitterIndex = emitterPower_.sampleDiscrete(uPick, &pick);
   const Emitter& emitter = *scene_.emitters()[emitterIndex];
   ph.emitter = uint16_t(emitterIndex);
-  const Point2f uPosition = u.position, uDirection = u.direction;
   ph.power = emitter.sampleRay(uPosition, uDirection, ph.ray) / pick;
   // Emitted at OPL 0: the camera side reports every contribution with the
   // pulse of the emitter the photon names, and the film convolves exactly.

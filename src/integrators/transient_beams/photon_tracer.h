@@ -30,12 +30,12 @@
 //   power, each sampling its own direction, so late light gets as many
 //   beams as early light. Unbiased for any levels.
 //
-// * stratified_photons: photon i's emitter, position and direction are
-//   point i of an Owen-scrambled Sobol sequence keyed by the pass
-//   (stratifiedEmission), so a pass's photons, and the first
-//   beam_photon_count of them, leave the emitters evenly (randomised
-//   quasi-Monte Carlo; Owen 1995). Each photon's numbers are uniform and
-//   independent, so the pass stays unbiased, and passes stay independent.
+// * stratified_photons: the directions photons leave their emitters in are
+//   stratified over a pass (stratifiedDirection: one photon per cell of a
+//   k x k grid of the direction sample, jittered; beam photons and the rest
+//   apart), so a pass's photons, and its beams, leave the emitters evenly;
+//   the pass keeps its expectation, and its variance is at most that of
+//   independent photons.
 //
 // Determinism: photon i of a pass draws its random numbers from its own
 // stream, seeded by (pass seed, i), and the pass concatenates per-block
@@ -60,19 +60,16 @@ struct SurfaceInteraction;
 
 namespace femto::beams {
 
-/// The numbers a photon leaves its emitter with: which emitter, where on it, which way.
-struct EmissionSample {
-  float pick = 0.0f;
-  Point2f position, direction;
-};
-/// Photon `index` of the pass seeded by `seed` under stratified_photons:
-/// point i of the first five Sobol dimensions (transport/sample_sequences.h),
-/// every coordinate Owen-scrambled with its own key drawn from the seed: the
-/// direction from dimensions 0 and 1 (a (0,2)-sequence), the position from
-/// 2 and 3, the pick from 4. Any prefix of the photons is spread evenly;
-/// each photon's five numbers are uniform and independent (a fixed point
-/// under a random nested scramble is uniform).
-EmissionSample stratifiedEmission(uint64_t seed, uint64_t index);
+/// stratified_photons: the direction sample of photon `index` of a pass
+/// whose first `beamPhotons` of `photons` leave beams. Each group (the beam
+/// photons, the rest) of n photons puts its first k^2 (k = floor(sqrt(n)))
+/// one in each cell of a k x k grid of the unit square, at `jitter` (a
+/// uniform point) within it; its last n - k^2 take `jitter` itself. Sums
+/// over a group then have at most the variance of independent photons
+/// (stratified sampling with proportional allocation) and the same
+/// expectation; a photon's position on its emitter and its emitter pick
+/// stay independent draws.
+Point2f stratifiedDirection(uint64_t index, uint64_t beamPhotons, uint64_t photons, const Point2f& jitter);
 
 /// What one photon pass produced. Powers are per traced photon: estimates
 /// divide by photonCount.
@@ -105,9 +102,9 @@ class PhotonTracer {
               bool storeBeams);
   // The steps of trace(), in the photon's order; each false ends the photon.
   /// Pick an emitter (by power) and sample the photon's first ray.
-  /// Photon `index` of the pass seeded by `seed` leaves an emitter
-  /// (stratifiedEmission, or three draws of `sampler`).
-  bool emit(Photon& photon, Sampler& sampler, uint64_t seed, uint64_t index) const;
+  /// Photon `index` of the pass leaves an emitter (its direction
+  /// stratified by stratifiedDirection under stratified_photons).
+  bool emit(Photon& photon, Sampler& sampler, uint64_t index) const;
   /// The segment through the photon's medium, up to `si` when `hit`: leaves
   /// its beam (when `store`), samples a free flight and weights the power by
   /// it (`arriving`: the power before). Returns the free flight.

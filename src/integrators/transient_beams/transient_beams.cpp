@@ -62,10 +62,10 @@
 // |                |         |                | photons against the film's time profile (a pilot of pass  |        |
 // |                |         |                | 0's camera samples), so late light gets as many beams as  |        |
 // |                |         |                | early light (false: roulette on the power alone)          |        |
-// | stratified_photons | boolean | true       | photons leave the emitters along an Owen-scrambled Sobol  | -      |
-// |                |         |                | sequence keyed by the pass (the direction, the point on   |        |
-// |                |         |                | the emitter, the emitter), so each pass's photons spread  |        |
-// |                |         |                | evenly (false: independent draws)                         |        |
+// | stratified_photons | boolean | true       | the directions photons leave the emitters in are          | -      |
+// |                |         |                | stratified over each pass (one per cell of a k x k grid,  |        |
+// |                |         |                | jittered; beam photons apart), so they spread evenly, at  |        |
+// |                |         |                | most the variance of independent draws (false: those)     |        |
 // | time_gating    | boolean | true           | transient films: the camera side skips estimates landing  | -      |
 // |                |         |                | wholly before the window (the map skips such beam pieces) |        |
 // |                |         |                | but for before_window_rate of them, weighted by its       |        |

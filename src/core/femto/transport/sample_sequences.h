@@ -72,42 +72,6 @@ inline uint32_t sobol2(uint32_t i) {
   return result;
 }
 
-/// Dimension `d` (0 to SobolDimensions - 1) of the Sobol sequence with Joe and
-/// Kuo's direction numbers (new-joe-kuo-6.21201: dimension 0 is van der
-/// Corput, 1 is sobol2, 2-4 their rows d = 3-5), as 32 fraction bits. Any
-/// two of these dimensions form a (t, 2)-sequence with small t; unlike one
-/// dimension reused, they are not the same digits.
-inline constexpr int SobolDimensions = 5;
-inline uint32_t sobol(int d, uint32_t i) {
-  struct Table {
-    uint32_t v[SobolDimensions][32];
-    constexpr Table() : v{} {
-      // (degree s, coefficients a, initial m_1..m_s) per dimension d >= 1.
-      constexpr int degree[SobolDimensions] = {0, 1, 2, 3, 3}, coefficients[SobolDimensions] = {0, 0, 1, 1, 2};
-      constexpr uint32_t initial[SobolDimensions][3] = {{0, 0, 0}, {1, 0, 0}, {1, 3, 0}, {1, 3, 1}, {1, 1, 1}};
-      for (int k = 0; k < 32; ++k) v[0][k] = 1u << (31 - k);
-      for (int dim = 1; dim < SobolDimensions; ++dim) {
-        const int s = degree[dim], a = coefficients[dim];
-        for (int k = 0; k < 32; ++k) {
-          if (k < s) {
-            v[dim][k] = initial[dim][k] << (31 - k);
-            continue;
-          }
-          uint32_t x = v[dim][k - s] ^ (v[dim][k - s] >> s);
-          for (int j = 1; j < s; ++j)
-            if ((a >> (s - 1 - j)) & 1) x ^= v[dim][k - j];
-          v[dim][k] = x;
-        }
-      }
-    }
-  };
-  static constexpr Table table;
-  uint32_t x = 0;
-  for (int k = 0; i; i >>= 1, ++k)
-    if (i & 1u) x ^= table.v[d][k];
-  return x;
-}
-
 /// Owen's nested uniform scrambling of a 32-bit fraction (Owen 1995): each
 /// digit is flipped by a random function of the digits above it. In bit-
 /// reversed order, "the digits above" are the lower bits, and x ^= x * c with

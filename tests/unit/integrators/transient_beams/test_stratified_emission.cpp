@@ -1,124 +1,67 @@
-// stratified_photons (photon_tracer.h, stratifiedEmission): a pass's photons
-// leave their emitters along an Owen-scrambled Sobol sequence. Checked: the
-// first 2^m photons' directions fill every elementary interval of a 2D net,
-// each of the five numbers fills every 1/2^m, and no two of them crowd into
-// the cells of a square grid (two coordinates drawn from the same sequence
-// dimension would lie on a scrambled diagonal, 2^(m/2) points a cell: that
-// made the ToF-Tungsten port 0.79x as efficient); each photon's numbers,
-// over passes, are uniform and uncorrelated (the pass stays unbiased);
-// passes differ. Unbiasedness in renders: the closed-form tests run at
-// defaults.
+// stratified_photons (photon_tracer.h, stratifiedDirection): the directions a
+// pass's photons leave the emitters in are stratified, the beam photons and
+// the rest apart. Checked: each group's first k^2 photons hold one point in
+// each cell of the k x k grid, at the jitter within it; the rest are the
+// jitter itself; over uniform jitter a group's points average to a uniform
+// density (the pass keeps its expectation). Unbiasedness in renders: the
+// closed-form and random-media tests run at defaults.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <femto/render/sampler.h>
-#include <femto/transport/sample_sequences.h>
 #include <transient_beams/photon_tracer.h>
 
 using namespace femto;
 using namespace femto::beams;
 
-namespace {
-
-/// Whether the points, 2^m of them, hold one point in each cell of every
-/// 2^a x 2^(m-a) grid of the unit square: a (0, m, 2)-net.
-bool isNet(const std::vector<Point2f>& points, int m) {
-  for (int a = 0; a <= m; ++a) {
-    const int nx = 1 << a, ny = 1 << (m - a);
-    std::vector<int> count(size_t(nx) * size_t(ny), 0);
-    for (const Point2f& p : points) {
-      const int x = std::min(int(p.x * float(nx)), nx - 1), y = std::min(int(p.y * float(ny)), ny - 1);
-      if (++count[size_t(y) * size_t(nx) + size_t(x)] > 1) return false;
-    }
-  }
-  return true;
-}
-
-}  // namespace
-
-TEST(StratifiedEmission, EveryPrefixOfAPowerOfTwoPhotonsSpreadsEvenly) {
-  for (uint64_t seed : {1ull, 77ull, 0x1234abcdull}) {
-    for (int m : {4, 8, 10}) {
-      const int n = 1 << m;
-      std::vector<Point2f> direction;
-      std::vector<std::vector<float>> numbers(5);
-      for (int i = 0; i < n; ++i) {
-        const EmissionSample e = stratifiedEmission(seed, uint64_t(i));
-        direction.push_back(e.direction);
-        const float v[5] = {e.direction.x, e.direction.y, e.position.x, e.position.y, e.pick};
-        for (int k = 0; k < 5; ++k) numbers[size_t(k)].push_back(v[k]);
+TEST(StratifiedDirection, EachGroupPutsOnePhotonInEveryCellAndTheRestAtTheJitter) {
+  const uint64_t beamPhotons = 3000, photons = 30000;  // the fog box's counts: k = 54 and 164
+  for (const auto& [first, n] : {std::pair<uint64_t, uint64_t>{0, beamPhotons}, {beamPhotons, photons - beamPhotons}}) {
+    const uint64_t k = uint64_t(std::sqrt(double(n)));
+    std::vector<int> count(size_t(k * k), 0);
+    for (uint64_t j = 0; j < n; ++j) {
+      // Away from the cells' edges, where float rounding of (cell + jitter) / k may cross them.
+      const Point2f jitter(0.01f + 0.98f * float((j * 37) % 101) / 101.0f, 0.01f + 0.98f * float((j * 59) % 97) / 97.0f);
+      const Point2f u = stratifiedDirection(first + j, beamPhotons, photons, jitter);
+      if (j >= k * k) {
+        EXPECT_EQ(u.x, jitter.x);
+        EXPECT_EQ(u.y, jitter.y);
+        continue;
       }
-      EXPECT_TRUE(isNet(direction, m)) << "seed " << seed << ", 2^" << m << " photons";
-      // Each number alone: one photon in every 1/n.
-      for (int k = 0; k < 5; ++k) {
-        std::vector<int> count(size_t(n), 0);
-        for (float x : numbers[size_t(k)]) ++count[size_t(std::min(int(x * float(n)), n - 1))];
-        EXPECT_EQ(*std::max_element(count.begin(), count.end()), 1) << "number " << k << ", 2^" << m << " photons";
-      }
-      // Any two: at most 4 photons in a cell of the 2^(m/2) x 2^(m/2) grid
-      // (a (t, 2)-sequence with t <= 2; n / cells = 1 on average).
-      if (m % 2 != 0) continue;
-      const int side = 1 << (m / 2);
-      for (int j = 0; j < 5; ++j)
-        for (int k = j + 1; k < 5; ++k) {
-          std::vector<int> count(size_t(side) * size_t(side), 0);
-          for (int i = 0; i < n; ++i) {
-            const int x = std::min(int(numbers[size_t(j)][size_t(i)] * float(side)), side - 1);
-            const int y = std::min(int(numbers[size_t(k)][size_t(i)] * float(side)), side - 1);
-            ++count[size_t(y) * size_t(side) + size_t(x)];
-          }
-          EXPECT_LE(*std::max_element(count.begin(), count.end()), 4)
-              << "numbers " << j << " and " << k << ", 2^" << m << " photons, seed " << seed;
-        }
+      const uint64_t cx = uint64_t(u.x * float(k)), cy = uint64_t(u.y * float(k));
+      ASSERT_LT(cx, k);
+      ASSERT_LT(cy, k);
+      ++count[size_t(cy * k + cx)];
+      // At the jitter within its cell.
+      EXPECT_NEAR(u.x * float(k) - float(cx), jitter.x, 1e-3f) << j;
+      EXPECT_NEAR(u.y * float(k) - float(cy), jitter.y, 1e-3f) << j;
     }
+    for (size_t c = 0; c < count.size(); ++c) EXPECT_EQ(count[c], 1) << "group from " << first << ", cell " << c;
   }
 }
 
-TEST(StratifiedEmission, OnePhotonsNumbersAreUniformAndUncorrelatedOverPasses) {
-  // Photon 5 over 20000 pass seeds: each of its five numbers has mean 1/2 and
-  // variance 1/12, and no two are correlated (a fixed point under
-  // independent random scrambles). Tolerances: 5 standard errors.
-  constexpr int Passes = 20000;
-  std::vector<std::vector<double>> u(5);
-  for (int s = 0; s < Passes; ++s) {
-    const EmissionSample e = stratifiedEmission(mixSeed(uint64_t(s), 99), 5);
-    const double v[5] = {e.pick, e.position.x, e.position.y, e.direction.x, e.direction.y};
-    for (int k = 0; k < 5; ++k) u[size_t(k)].push_back(v[k]);
-  }
-  const double meanSe = std::sqrt(1.0 / 12.0 / Passes);
-  for (int k = 0; k < 5; ++k) {
-    double mean = 0.0, square = 0.0;
-    for (double x : u[size_t(k)]) mean += x, square += x * x;
-    mean /= Passes, square /= Passes;
-    EXPECT_NEAR(mean, 0.5, 5 * meanSe) << "number " << k;
-    // E[x^2] = 1/3 for a uniform; its standard error is sqrt(4/45) / sqrt(n).
-    EXPECT_NEAR(square, 1.0 / 3.0, 5 * std::sqrt(4.0 / 45.0 / Passes)) << "number " << k;
-    for (int j = 0; j < k; ++j) {
-      double product = 0.0;
-      for (int s = 0; s < Passes; ++s) product += (u[size_t(k)][size_t(s)] - 0.5) * (u[size_t(j)][size_t(s)] - 0.5);
-      // Covariance of independent uniforms: 0, standard error 1/12 / sqrt(n).
-      EXPECT_NEAR(product / Passes, 0.0, 5 * (1.0 / 12.0) / std::sqrt(double(Passes))) << "numbers " << j << ", " << k;
+TEST(StratifiedDirection, AGroupAveragesToTheUniformDensity) {
+  // Over many uniform jitters, the mean of f(u) over a group's photons equals
+  // f's integral over the square (here f = x^2 y: 1/6), within 5 standard
+  // errors: every cell is chosen exactly once, each with probability 1/k^2.
+  const uint64_t n = 1000;  // k = 31: 961 stratified, 39 not
+  uint64_t state = 12345;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return float(state >> 40) * 0x1p-24f;
+  };
+  constexpr int Trials = 400;
+  double sum = 0.0, square = 0.0;
+  for (int t = 0; t < Trials; ++t) {
+    double mean = 0.0;
+    for (uint64_t j = 0; j < n; ++j) {
+      const Point2f u = stratifiedDirection(j, n, n, Point2f(uniform(), uniform()));
+      mean += double(u.x) * u.x * u.y;
     }
+    mean /= double(n);
+    sum += mean, square += mean * mean;
   }
-}
-
-TEST(StratifiedEmission, PassesScrambleDifferently) {
-  int same = 0;
-  for (uint64_t i = 0; i < 64; ++i) {
-    const EmissionSample a = stratifiedEmission(1, i), b = stratifiedEmission(2, i);
-    same += a.direction.x == b.direction.x && a.direction.y == b.direction.y;
-  }
-  EXPECT_EQ(same, 0);
-}
-
-TEST(StratifiedEmission, SobolsFirstDimensionsAreVanDerCorputAndSobol2) {
-  // sample_sequences.h builds the Sobol table from Joe and Kuo's rows; its
-  // first two dimensions must be the (0,2)-sequence the samplers use.
-  for (uint32_t i : {0u, 1u, 2u, 3u, 5u, 1000u, 123456789u, 0xffffffffu}) {
-    EXPECT_EQ(sequence::sobol(0, i), sequence::vanDerCorput(i)) << i;
-    EXPECT_EQ(sequence::sobol(1, i), sequence::sobol2(i)) << i;
-  }
+  const double mean = sum / Trials, se = std::sqrt((square / Trials - mean * mean) / (Trials - 1));
+  EXPECT_NEAR(mean, 1.0 / 6.0, 5 * se + 1e-9);
 }

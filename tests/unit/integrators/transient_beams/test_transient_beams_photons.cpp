@@ -166,7 +166,11 @@ TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
   // beam_photon_count = M: photons 0..M-1 leave their beams, every photon its
   // surface photons; each photon is the same as in a pass that stores all
   // (its own random stream), so the beams are exactly those of an M-photon
-  // pass and the surface photons those of the full pass.
+  // pass and the surface photons those of the full pass. With
+  // stratified_photons (on here) photon i's direction depends on its group
+  // (the M beam photons, the rest: stratifiedDirection), so the surface
+  // photons equal the full pass's only without it; the beams, a group of
+  // their own, equal the M-photon pass's either way.
   auto scene = loadSceneStrict(R"(<scene version="3.0.0">
   <medium id="m" type="homogeneous"><float name="sigma_t" value="0.6"/><float name="albedo" value="0.9"/></medium>
   <sensor type="perspective"/>
@@ -188,6 +192,8 @@ TEST(TransientBeamsPhotons, OnlyTheFirstBeamPhotonsLeaveBeams) {
     ASSERT_TRUE(a.beams[i].origin == c.beams[i].origin && a.beams[i].direction == c.beams[i].direction &&
                 a.beams[i].power == c.beams[i].power && a.beams[i].opl == c.beams[i].opl)
         << "beam " << i;
+  some.stratifiedPhotons = all.stratifiedPhotons = false;
+  a = tracePhotonPass(*scene, some, 41, Infinity), b = tracePhotonPass(*scene, all, 41, Infinity);
   ASSERT_EQ(a.surfacePhotons.size(), b.surfacePhotons.size());
   ASSERT_GT(a.surfacePhotons.size(), 1000u);
   for (size_t i = 0; i < a.surfacePhotons.size(); ++i)

@@ -5,7 +5,10 @@
 // fog cube lit from inside (thin and thick, observer time on and off) they
 // agree in every bin within their combined noise, with no bias allowance;
 // the split one is less noisy in the late bins, which is what it is for; and
-// its bits do not depend on the thread count. time_gating: a late window's
+// its bits do not depend on the thread count. Photons are drawn
+// independently (stratified_photons = false): the late noise compared is
+// then the splitting's alone (stratified, the thick cube's late bins read
+// the same noise split and unsplit, 0.0209 against 0.0207 over 10 runs). time_gating: a late window's
 // render skips (but for before_window_rate of them, weighted) the estimates
 // that land wholly before it; gated and ungated agree in every bin and in
 // the steady image, which holds the light before the window.
@@ -31,6 +34,7 @@ std::shared_ptr<Scene> cubeScene(const Cube& c, bool splitting, bool gating = tr
     <integer name="photon_count" value="1500"/><integer name="max_depth" value="40"/>
     <float name="radius" value="0.04"/><float name="surface_radius" value="0.1"/>
     <float name="surface_time_width" value="0.25"/>
+    <boolean name="stratified_photons" value="false"/>
     <boolean name="time_splitting" value=")", splitting ? "true" : "false", R"("/>
     <boolean name="time_gating" value=")", gating ? "true" : "false", R"("/></integrator>)"), 2, firstBin));
 }
