@@ -91,7 +91,15 @@ bool CameraTracer::crossMedium(const Scene& scene, Path& s, bool hit, const Surf
   const bool counted = segmentCounts(settings_.observerTime, s.cameraSegment);
   float tMax = hit ? distance(s.vertex, si.p)
                    : unboundedSegmentLength(*s.medium, s.opl, counted ? recorder.horizon() : Infinity);
-  if (tMax > 0.0f && std::isfinite(tMax)) gatherBeams(scene, s, tMax, hit ? &si.p : nullptr, sampler, recorder);
+  if (tMax > 0.0f && std::isfinite(tMax)) {
+    // To the exact surface point the segment ends on: the ray that found it
+    // left from an offset origin, so s.ray.d from the vertex passes beside
+    // it (by the offset, ~1e-4 of the scene) and could end outside the
+    // medium, where light arrives earlier than anywhere inside (random media
+    // seed 23: a trace of energy before the earliest arrival).
+    const Vec3f direction = hit ? (si.p - s.vertex) / tMax : s.ray.d;
+    gatherBeams(scene, s, direction, tMax, sampler, recorder);
+  }
   if (!hit) return false;  // escaping through a medium: attenuated to nothing
   s.throughput *= s.medium->transmittance(s.ray, tMax, sampler);
   return !s.throughput.isBlack();
@@ -143,7 +151,7 @@ bool CameraTracer::followSpecular(Path& s, const SurfaceInteraction& si, Sampler
   return true;
 }
 
-void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, const Point3f* end, Sampler& sampler,
+void CameraTracer::gatherBeams(const Scene& scene, const Path& s, const Vec3f& direction, float tMax, Sampler& sampler,
                                RadianceRecorder& recorder) {
   // Russian roulette on the whole gather (docs/design/photon-beams.md, "Gather
   // fraction"): the expectation is unchanged.
@@ -158,18 +166,7 @@ void CameraTracer::gatherBeams(const Scene& scene, const Path& s, float tMax, co
   // ...and the beams here were ended by the beams' roulette of this medium.
   const BeamRoulette beamRoulette = BeamRoulette::of(medium);
   CameraSegment segment;
-  // From the exact vertex, where the path's OPL is s.opl, to the exact
-  // surface point it ends on: the ray that found that point left from an
-  // offset origin, so s.ray.d from the vertex passes beside it (by the
-  // offset, ~1e-4 of the scene) and the segment's end could lie outside
-  // the medium, where light arrives earlier than anywhere inside (random
-  // media seed 23: a trace of energy before the earliest arrival).
-  segment.ray = Ray(s.vertex, s.ray.d);
-  if (end) {
-    const Vec3f chord = *end - s.vertex;
-    const float length = femto::length(chord);
-    if (length > 0.0f && std::isfinite(length)) segment.ray = Ray(s.vertex, chord / length), tMax = length;
-  }
+  segment.ray = Ray(s.vertex, direction);  // from the exact vertex, where the path's OPL is s.opl
   segment.tMax = tMax > roulette.start() ? std::min(tMax, roulette.sampleLength(sampler.next1D())) : tMax;
   // Observer time off: the camera's first segment adds no OPL (its beams
   // then show where light is, not when the camera sees it).

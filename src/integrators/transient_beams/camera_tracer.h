@@ -142,8 +142,8 @@ class CameraTracer {
   WindowGate windowGate(const Scene& scene, RadianceRecorder& recorder, Sampler& sampler) const;
   // The estimates along the way.
   /// The beams along the current segment: from the path's vertex, `tMax`
-  /// along its ray, or to `end` (the surface point the segment ends on) when given.
-  void gatherBeams(const Scene& scene, const Path& path, float tMax, const Point3f* end, Sampler& sampler,
+  /// along unit `direction` (toward the surface point it ends on, if any).
+  void gatherBeams(const Scene& scene, const Path& path, const Vec3f& direction, float tMax, Sampler& sampler,
                    RadianceRecorder& recorder);
   void nextEvent(const Scene& scene, const Path& path, const SurfaceInteraction& si, Sampler& sampler,
                  RadianceRecorder& recorder);

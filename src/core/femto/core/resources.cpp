@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <utility>
 #include <sstream>
+#include <utility>
 
 #include <femto/base/error.h>
 #include <femto/core/log.h>
